@@ -47,7 +47,7 @@ def test_lesson_11_figures_keep_both_camera_centres_inside_the_axes():
     from mpl_toolkits.mplot3d import proj3d
 
     pair = fixtures.stereo_pair(0.5, np.deg2rad(40))
-    for figsize, cols in (((7.5, 3.9), 1), ((10.5, 4.2), 2)):  # cell 6, cell 20 (two panels)
+    for figsize, cols in (((10.5, 3.9), 2), ((10.5, 4.2), 2)):  # cells 6 and 20 (two panels each)
         fig = plt.figure(figsize=figsize, layout="constrained")
         axes = []
         for k in range(cols):

@@ -23,11 +23,32 @@ from ..camera import Camera
 from . import palette
 from .view3d import set_equal_aspect
 
-__all__ = ["draw_epipolar_geometry", "epipolar_line_ends", "image_plane_corners"]
+__all__ = [
+    "draw_epipolar_geometry",
+    "epipolar_line_ends",
+    "image_plane_corners",
+    "image_plane_points",
+]
 
 
-def _lift(camera: Camera, uv: np.ndarray, size: float) -> np.ndarray:
-    """Pixels (N, 2) lifted to the plane z_c = ``size`` in front of ``camera``, world coordinates."""
+def image_plane_points(camera: Camera, uv: ArrayLike, size: float) -> np.ndarray:
+    """Pixels lifted onto the image plane drawn ``size`` metres in front of ``camera``.
+
+    Parameters
+    ----------
+    camera : Camera
+        The camera (world frame).
+    uv : (N, 2) array_like
+        Pixels (u, v).
+    size : float
+        Depth of the drawn image plane, metres (z_c = ``size``).
+
+    Returns
+    -------
+    (N, 3) ndarray
+        The world points on the pixels' rays at depth ``size``.
+    """
+    uv = np.atleast_2d(np.asarray(uv, dtype=float))
     rays = np.linalg.solve(camera.K, np.column_stack([uv, np.ones(len(uv))]).T).T
     return (rays * size - camera.t) @ camera.R
 
@@ -50,7 +71,7 @@ def image_plane_corners(camera: Camera, size: float) -> np.ndarray:
     """
     w, h = camera.image_size
     uv = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]])
-    return _lift(camera, uv, size)
+    return image_plane_points(camera, uv, size)
 
 
 def epipolar_line_ends(camera: Camera, other: Camera, X: ArrayLike) -> np.ndarray:
@@ -132,16 +153,16 @@ def draw_epipolar_geometry(
             corners = image_plane_corners(cam, size)
             ax.plot(*np.vstack([corners, corners[:1]]).T, color=colour, lw=lw, ls=style)
     for cam, other in ((camera1, camera2), (camera2, camera1)):
-        ends = _lift(cam, epipolar_line_ends(cam, other, X), size)
+        ends = image_plane_points(cam, epipolar_line_ends(cam, other, X), size)
         ax.plot(*ends.T, color=palette.RED, lw=2)
-        x = _lift(cam, cam.project(X[None])[:1], size)[0]
+        x = image_plane_points(cam, cam.project(X[None])[:1], size)[0]
         ax.plot(*x, "o", color=palette.RED, ms=4)
     ax.plot(*X, "o", color="k", ms=6)
     ax.text(*X, "  X", fontsize=10)
     for Y in np.zeros((0, 3)) if also is None else np.atleast_2d(np.asarray(also, dtype=float)):
         for cam in (camera1, camera2):
             ax.plot(*np.array([cam.centre, Y]).T, color="0.25", lw=1, ls=":")
-            y = _lift(cam, cam.project(Y[None])[:1], size)[0]
+            y = image_plane_points(cam, cam.project(Y[None])[:1], size)[0]
             ax.plot(*y, "o", mfc="w", mec=palette.RED, mew=1.5, ms=5)
         ax.plot(*Y, "o", mfc="w", mec="k", mew=1.5, ms=6)
         ax.text(*Y, "  Y", fontsize=10)

@@ -121,7 +121,7 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
             "their lines here",
             "l' = F x",
             "depth 1, ..., 6 m",
-            "epipole",
+            "star: epipole in the image",
             "arrow: epipole off the image",
         ],
         loc="upper right",
