@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from camlab import fixtures
-from camlab.plotting import epipolar3d, scene3d
+from camlab.plotting import epipolar3d, palette, scene3d
 
 
 def test_epipolar_line_ends_pass_through_the_image_of_x_and_the_epipole():
@@ -47,7 +47,7 @@ def test_lesson_11_figures_keep_both_camera_centres_inside_the_axes():
     from mpl_toolkits.mplot3d import proj3d
 
     pair = fixtures.stereo_pair(0.5, np.deg2rad(40))
-    for figsize, cols in (((7.5, 3.9), 1), ((10.5, 4.2), 2)):  # cell 6, cell 20 (two panels)
+    for figsize, cols in (((10.5, 3.9), 2), ((10.5, 4.2), 2)):  # cells 6 and 20 (two panels each)
         fig = plt.figure(figsize=figsize, layout="constrained")
         axes = []
         for k in range(cols):
@@ -61,3 +61,22 @@ def test_lesson_11_figures_keep_both_camera_centres_inside_the_axes():
                 x, y, _ = proj3d.proj_transform(*C, ax.get_proj())
                 assert ax.bbox.contains(*ax.transData.transform((x, y))), C
         plt.close(fig)
+
+
+def test_image_planes_and_centres_take_their_cameras_colours():
+    """Lesson 11 (cells 5 and 19) calls C and its plane blue, C' and its plane orange."""
+    from matplotlib.colors import to_hex
+
+    fig = plt.figure()
+    ax = scene3d.axes3d(fig, 111)
+    pair = fixtures.stereo_pair(0.5, np.deg2rad(40))
+    epipolar3d.draw_epipolar_geometry(ax, *pair, [0.05, 1.2, 1.25], ghosts=pair)
+    solid = [
+        to_hex(ln.get_color())
+        for ln in ax.lines
+        if ln.get_linestyle() == "-" and len(ln.get_xdata()) == 5
+    ]
+    assert solid == [to_hex(palette.BLUE), to_hex(palette.ORANGE)]
+    dots = {t.get_text(): to_hex(t.get_color()) for t in ax.texts if t.get_text() in ("C", "C'")}
+    assert dots == {"C": to_hex(palette.BLUE), "C'": to_hex(palette.ORANGE)}
+    plt.close(fig)

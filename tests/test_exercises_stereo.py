@@ -159,3 +159,21 @@ def test_prompts_that_ask_for_an_array_reject_a_list():
     reference = EXERCISES["triangulate_point"].teaching
     with pytest.raises(AssertionError, match=r"you returned a list(.|\n)*np\.array"):
         check("triangulate_point", lambda *a: list(reference(*a)))
+
+
+def test_hartley_H2_accepts_another_scale_and_a_rotation_built_from_the_direction(capsys):
+    """Any scale passes, and so does R built from the epipole's unit direction (no angle)."""
+    from camlab.exercises.stereo_rectification.hartley import hartley_H2
+
+    def from_direction(e2, image_size):
+        w, h = image_size
+        T = np.array([[1, 0, -(w - 1) / 2], [0, 1, -(h - 1) / 2], [0, 0, 1.0]])
+        eT = T @ np.asarray(e2, float)
+        d = eT[:2] / eT[2]
+        d = d / np.linalg.norm(d) * np.sign(d[0])  # the smaller turn: the direction with u > 0
+        R = np.array([[d[0], d[1], 0], [-d[1], d[0], 0], [0, 0, 1.0]])
+        f = (R @ eT)[0] / (R @ eT)[2]
+        return -2.5 * np.array([[1, 0, 0], [0, 1, 0], [-1 / f, 0, 1]]) @ R @ T
+
+    assert check("hartley_H2", from_direction).passed
+    assert check("hartley_H2", lambda e, s: 7 * hartley_H2(e, s)).passed

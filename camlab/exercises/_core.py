@@ -481,6 +481,21 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     return expected, ""
 
 
+def _got_at_unit_length(got: Any, shown: Any) -> Any:
+    """The student's scale-free answer at unit length, signed like ``shown``: both print at one scale.
+
+    Returned unchanged when it cannot be (not a finite non-zero array of ``shown``'s shape).
+    """
+    try:
+        g = np.asarray(got, dtype=float)
+    except (TypeError, ValueError):
+        return got
+    if g.shape != np.shape(shown) or not np.isfinite(g).all() or not np.any(g):
+        return got
+    g = g / np.linalg.norm(g)
+    return -g if np.sum(g * np.asarray(shown, dtype=float)) < 0 else g
+
+
 def _shown_with_tolerance(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, str, Any]:
     """:func:`_expected_shown`, and the tolerance a failed check names beside it.
 
@@ -569,15 +584,17 @@ def check(
             )
         if not exercise.compare(got, expected):
             shown, scaled, tolerance = _shown_with_tolerance(exercise, got, expected)
+            got_shown = _got_at_unit_length(got, shown) if "unit length" in scaled else got
             run_again = partial(
                 _run_student, name, student_function, i=i, n=len(cases), seconds=seconds
             )
             raise CheckFailed(
                 f"{name}: wrong answer on test input {i + 1} of {len(cases)}\n"
                 f"  input    {_input_text(name, args)}\n"
-                f"  got      {_shown(as_array(got), shown)}\n"
-                f"  expected {_shown(shown, as_array(got))}{scaled}\n"
-                + worst_mismatch(got, shown, tolerance)
+                f"  got      {_shown(as_array(got_shown), shown)}"
+                + ("  (unit length, sign of the expected)" if got_shown is not got else "")
+                + f"\n  expected {_shown(shown, as_array(got_shown))}{scaled}\n"
+                + worst_mismatch(got_shown, shown, tolerance)
                 + f"  likely cause: {_likely_cause(exercise, args, got, expected, run_again)}"
             )
     if exercise.follow_up is not None:

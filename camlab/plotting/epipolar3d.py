@@ -23,11 +23,32 @@ from ..camera import Camera
 from . import palette
 from .view3d import set_equal_aspect
 
-__all__ = ["draw_epipolar_geometry", "epipolar_line_ends", "image_plane_corners"]
+__all__ = [
+    "draw_epipolar_geometry",
+    "epipolar_line_ends",
+    "image_plane_corners",
+    "image_plane_points",
+]
 
 
-def _lift(camera: Camera, uv: np.ndarray, size: float) -> np.ndarray:
-    """Pixels (N, 2) lifted to the plane z_c = ``size`` in front of ``camera``, world coordinates."""
+def image_plane_points(camera: Camera, uv: ArrayLike, size: float) -> np.ndarray:
+    """Pixels lifted onto the image plane drawn ``size`` metres in front of ``camera``.
+
+    Parameters
+    ----------
+    camera : Camera
+        The camera (world frame).
+    uv : (N, 2) array_like
+        Pixels (u, v).
+    size : float
+        Depth of the drawn image plane, metres (z_c = ``size``).
+
+    Returns
+    -------
+    (N, 3) ndarray
+        The world points on the pixels' rays at depth ``size``.
+    """
+    uv = np.atleast_2d(np.asarray(uv, dtype=float))
     rays = np.linalg.solve(camera.K, np.column_stack([uv, np.ones(len(uv))]).T).T
     return (rays * size - camera.t) @ camera.R
 
@@ -50,7 +71,7 @@ def image_plane_corners(camera: Camera, size: float) -> np.ndarray:
     """
     w, h = camera.image_size
     uv = np.array([[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]])
-    return _lift(camera, uv, size)
+    return image_plane_points(camera, uv, size)
 
 
 def epipolar_line_ends(camera: Camera, other: Camera, X: ArrayLike) -> np.ndarray:
@@ -88,7 +109,7 @@ def draw_epipolar_geometry(
     camera2: Camera,
     X: ArrayLike,
     size: float = 0.3,
-    plane_color: str = palette.GREY,
+    plane_color: str | None = None,
     ghosts: tuple[Camera, Camera] | None = None,
     also: ArrayLike | None = None,
 ) -> None:
@@ -104,8 +125,9 @@ def draw_epipolar_geometry(
         The world point, metres.
     size : float
         Depth of the drawn image planes in front of the centres, metres.
-    plane_color : str
-        Colour of the image planes' outlines.
+    plane_color : str or None
+        Colour of both image planes' outlines; None (the default) draws each in its camera's
+        colour, as the centres: camera 1 (C) blue, camera 2 (C') orange.
     ghosts : (Camera, Camera) or None
         Two more cameras whose image planes are drawn dashed in light grey (the original cameras
         behind a rectified pair).
@@ -120,29 +142,44 @@ def draw_epipolar_geometry(
     ax.plot(*np.array([C1, C2]).T, color="k", lw=2)  # the baseline
     for C in (C1, C2):
         ax.plot(*np.array([C, X]).T, color="0.25", lw=1, ls=(0, (4, 2)))  # the rays
-    for cams, colour, style in ((ghosts, "0.6", ":"), ((camera1, camera2), plane_color, "-")):
+    own = (palette.BLUE, palette.ORANGE) if plane_color is None else (plane_color,) * 2
+    for cams, colours, style, lw in (
+        (ghosts, ("0.6",) * 2, ":", 1.2),
+        ((camera1, camera2), own, "-", 1.6),
+    ):
         if cams is None:
             continue
-        for cam in cams:
+        for cam, colour in zip(cams, colours, strict=True):
             corners = image_plane_corners(cam, size)
-            ax.plot(*np.vstack([corners, corners[:1]]).T, color=colour, lw=1.2, ls=style)
+            ax.plot(*np.vstack([corners, corners[:1]]).T, color=colour, lw=lw, ls=style)
     for cam, other in ((camera1, camera2), (camera2, camera1)):
-        ends = _lift(cam, epipolar_line_ends(cam, other, X), size)
+        ends = image_plane_points(cam, epipolar_line_ends(cam, other, X), size)
         ax.plot(*ends.T, color=palette.RED, lw=2)
-        x = _lift(cam, cam.project(X[None])[:1], size)[0]
+        x = image_plane_points(cam, cam.project(X[None])[:1], size)[0]
         ax.plot(*x, "o", color=palette.RED, ms=4)
     ax.plot(*X, "o", color="k", ms=6)
     ax.text(*X, "  X", fontsize=10)
     for Y in np.zeros((0, 3)) if also is None else np.atleast_2d(np.asarray(also, dtype=float)):
         for cam in (camera1, camera2):
             ax.plot(*np.array([cam.centre, Y]).T, color="0.25", lw=1, ls=":")
-            y = _lift(cam, cam.project(Y[None])[:1], size)[0]
+            y = image_plane_points(cam, cam.project(Y[None])[:1], size)[0]
             ax.plot(*y, "o", mfc="w", mec=palette.RED, mew=1.5, ms=5)
         ax.plot(*Y, "o", mfc="w", mec="k", mew=1.5, ms=6)
         ax.text(*Y, "  Y", fontsize=10)
-    for C, name in ((C1, "C"), (C2, "C'")):
-        ax.plot(*C, "o", color="k", ms=5)
-        ax.text(C[0], C[1], C[2] - 0.06, name, fontsize=10, ha="center", va="top")
+    for C, name, colour in ((C1, "C", palette.BLUE), (C2, "C'", palette.ORANGE)):
+        ax.plot(*C, "o", color=colour, mec="k", ms=7)
+        ax.text(
+            C[0],
+            C[1],
+            C[2] - 0.02,
+            name,
+            fontsize=10,
+            ha="center",
+            va="top",
+            color=colour,
+            fontweight="bold",
+            path_effects=palette.halo(),
+        )
     pts = [tri] + [image_plane_corners(c, size) for c in (camera1, camera2)]
     set_equal_aspect(ax, pts, tight=True)
     ax.locator_params(nbins=4)

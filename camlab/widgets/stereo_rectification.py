@@ -121,7 +121,7 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
             "their lines here",
             "l' = F x",
             "depth 1, ..., 6 m",
-            "epipole",
+            "star: epipole in the image",
             "arrow: epipole off the image",
         ],
         loc="upper right",
@@ -482,7 +482,7 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
         xlim=(1e-3, 30),
         ylim=(0, 1.05),
         xlabel="|v1 - v2| (px, full size, log)",
-        ylabel="fraction of matches ≤ x",
+        ylabel="fraction ≤ x",
     )
     axh.axvline(0.5, color=palette.GREY, ls=":", lw=1)
     # beside the line at mid height, where no curve passes (they cross 0.5 px near 0 or near 1)
@@ -613,7 +613,7 @@ def rectify_pair() -> Demo:
         cal=(cal1, cal2),
         half_cams=(h1, h2),
     )
-    view = FigureView(figsize=(9.4, 3.8))
+    view = FigureView(figsize=(9.4, 3.3))
     art = _pair_figure(view, half)
     im, match_lines, step = art.im, art.match_lines, art.step
     sel = np.linspace(0, len(x1) - 1, 14).astype(int)

@@ -4,7 +4,7 @@ The 8-point algorithm (:mod:`.eight_point`), the epipoles (:mod:`.epipoles`), th
 pose (:mod:`.essential`), linear triangulation (:mod:`.triangulate`), the rectifying rotation
 (:mod:`.rectifying`), depth from disparity
 (:mod:`.depth`), the bad-pixel rate (:mod:`.bad_pixels`) and block matching's sub-pixel
-disparity (:mod:`.subpixel`).
+disparity (:mod:`.subpixel`), Hartley's rectifying homography (:mod:`.hartley`).
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from . import triangulate
 from . import rectifying
 from . import bad_pixels
 from . import subpixel
+from . import hartley
 
 # isort: on
 
@@ -28,6 +29,7 @@ __all__ = [
     "eight_point",
     "epipoles",
     "essential",
+    "hartley",
     "rectifying",
     "subpixel",
     "triangulate",

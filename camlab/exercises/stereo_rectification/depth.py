@@ -62,13 +62,18 @@ def _depth_diagnosis(args, got, expected) -> str:
         return "you forgot the baseline: Z = f B / d, and B (metres) sets the units of Z"
     if np.allclose(g, f / (B * d)):
         return "you divided by the baseline: Z = f B / d, the baseline multiplies (a wider rig sees deeper)"
+    if np.asarray(got).dtype.kind in "iub" and np.allclose(g, np.trunc(f * B / d)):
+        return (
+            "your depths are whole numbers of integer type: a cast to int (.astype(int), int(...)) or an integer array "
+            "cut off the fraction. Keep floats: Z = f B / (d + doffs) in float64"
+        )
     if np.allclose(g, f * B // d):
         return "you used floor division (//), which rounds the depth down: Z = f B / d with true division"
     for off in (0.5, 1.0, -0.5, -1.0):
         if np.allclose(g, f * B / (d + off)):
             return (
-                f"your depths are f B / (d {off:+g}): the disparity is a difference of two pixel columns, "
-                "so no half-pixel or 1-based offset belongs in it; Z = f B / d"
+                f"your depths are f B / (d{' + doffs' if doffs else ''} {off:+g}): the disparity is a difference of two pixel columns, "
+                "so no half-pixel or 1-based offset belongs in it; Z = f B / (d + doffs)"
             )
     ratio = g / expected
     if np.allclose(ratio, ratio.flat[0], rtol=1e-6):
@@ -134,6 +139,7 @@ register_exercise(
             (lambda d, f, B, o=0.0: 1000 * f * B / (d + o), "unit slip"),
             (lambda d, f, B, o=0.0: f * B / (d + o + 1.0), "1-based offset"),
             (lambda d, f, B, o=0.0: f * B // (d + o), "floor division"),
+            (lambda d, f, B, o=0.0: (f * B / (d + o)).astype(int), "cast to int"),
             (lambda d, f, B, o=0.0: f / (B * (d + o)), "divided by the baseline"),
             (lambda d, f, B, o=0.0: -f * B / (d + o), "depths are negative"),
             (lambda d, f, B, o=0.0: f * B / d, "left out doffs"),

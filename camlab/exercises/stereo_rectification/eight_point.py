@@ -157,6 +157,11 @@ def _unnormalisation_slip(g, x1, x2, expected, T1, T2) -> str:
             "you undid the normalisation as for a homography (T2^-1 F_n T1): a homography maps points, "
             "but F sits between two points, so each side takes its own T transposed: " + right,
         ),
+        (
+            iT2 @ Fn @ iT1,
+            "you undid the normalisation with the inverses, untransposed (T2^-1 F_n T1^-1): F_n was "
+            "fitted to the normalised points T x, so substitute them: " + right,
+        ),
         (T2 @ Fn @ T1, "you undid the normalisation with T2 where T2^T belongs: " + right),
         (
             T2.T @ Fn,
@@ -344,6 +349,7 @@ register_exercise(
         cases=_eight_point_cases,
         compare=_fits_as_well,
         diagnose=_eight_point_diagnosis,
+        up_to_scale=True,  # got and expected printed at one scale, not F at ~1e-5 beside unit norm
         wrong_variants=(
             (_no_rank2, "rank 2"),
             (lambda x1, x2: epipolar.estimate_fundamental_matrix(x1, x2).T, "transposed"),
@@ -371,6 +377,14 @@ register_exercise(
             ),
             (_only_t2, "only image 2's normalisation"),
             (_row_times_t, "x_h @ T.T"),
+            (
+                lambda x1, x2: (
+                    np.linalg.inv(hartley_normalise(np.asarray(x2, float)).T)
+                    @ _forgot_unnormalising(x1, x2)
+                    @ np.linalg.inv(hartley_normalise(np.asarray(x1, float)).T)
+                ),
+                "inverses, untransposed",
+            ),
         ),
         teaching=eight_point,
     )

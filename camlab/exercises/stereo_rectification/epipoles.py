@@ -67,6 +67,23 @@ def _epipole_diagnosis(args, got, expected) -> str:
             "your e2 is e1, the null vector of F: e2 is the null vector of F^T (F^T e2 = 0), the last "
             "column of U in F = U S V^T, not the last row of V^T again"
         )
+    if same_up_to_scale(e1, expected.e2) and not same_up_to_scale(e2, expected.e1):
+        return (
+            "your e1 is e2, the null vector of F^T: e1 is the null vector of F itself (F e1 = 0), the "
+            "last row of V^T in F = U S V^T; only e2 comes from F^T (its last column of U)"
+        )
+    U, _, Vt = np.linalg.svd(F)
+    if same_up_to_scale(e1, Vt[0]) or same_up_to_scale(e2, U[:, 0]):
+        return (
+            "you took the singular vector of the LARGEST singular value: numpy's svd sorts them in "
+            "decreasing order, so the null vectors (singular value 0) are the LAST row of V^T (e1) and "
+            "the LAST column of U (e2)"
+        )
+    if same_up_to_scale(e1, Vt[:, -1]) or same_up_to_scale(e2, U[-1]):
+        return (
+            "you took a column of V^T (or a row of U): numpy returns V^T, whose ROWS are the right "
+            "singular vectors, so e1 = Vt[-1]; U's COLUMNS are the left ones, so e2 = U[:, -1]"
+        )
     r1 = np.linalg.norm(F @ e1) / max(np.linalg.norm(e1), 1e-300)
     r2 = np.linalg.norm(F.T @ e2) / max(np.linalg.norm(e2), 1e-300)
     bad = " and ".join(
@@ -118,7 +135,12 @@ register_exercise(
         diagnose=_epipole_diagnosis,
         wrong_variants=(
             (lambda F: tuple(reversed(epipolar.epipoles(F))), "swapped"),
-            (lambda F: (np.linalg.svd(F)[2][0], np.linalg.svd(F)[0][:, 0]), "should be 0"),
+            (
+                lambda F: (np.linalg.svd(F)[2][0], np.linalg.svd(F)[0][:, 0]),
+                "LARGEST singular value",
+            ),
+            (lambda F: (np.linalg.svd(F)[2][:, -1], np.linalg.svd(F)[0][-1]), "a column of V^T"),
+            (lambda F: (np.linalg.svd(F)[0][:, -1], np.linalg.svd(F)[0][:, -1]), "your e1 is e2"),
             (lambda F: (np.cross(F[0], F[1]), np.cross(F[:, 0], F[:, 1])), "zero vector"),
             (lambda F: (np.linalg.svd(F)[2][-1], np.linalg.svd(F)[2][-1]), "null vector of F^T"),
             (_divided_by_w, "Do not divide by w"),

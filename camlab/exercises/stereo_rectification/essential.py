@@ -94,6 +94,19 @@ def _two_rotations(mine, right) -> str:
     return "    yours" + " " * 21 + "|   expected\n" + "\n".join(rows)
 
 
+_VT_AGAIN = (
+    "you wrote U @ W @ Vt.T: numpy's svd already returns V^T (its third output), so R = U W V^T "
+    "is U @ W @ Vt, with no further transpose"
+)
+
+
+def _vt_transposed_again(E, Rs) -> bool:
+    """True when every R is U W V (or U W^T V), up to the det fix's signs: numpy's V^T transposed again."""
+    U, _, Vt = np.linalg.svd(E)
+    W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    return all(np.allclose(np.abs(U.T @ R @ Vt), np.abs(W), atol=1e-8) for R in Rs)
+
+
 def _essential_diagnosis(args, got, expected) -> str:
     (E,) = args
     try:
@@ -165,6 +178,8 @@ def _essential_diagnosis(args, got, expected) -> str:
             "or decompose E^T? Your first R and the candidate it transposes:\n"
             + _two_rotations(Rs[0], Rs[0].T)
         )
+    if _vt_transposed_again(E, Rs):
+        return _VT_AGAIN
     if len({tuple(np.round(R, 6).ravel()) for R in Rs}) < 2:
         return "your four candidates hold only one rotation: R_a = U W V^T and R_b = U W^T V^T (note the transpose)"
     return (
@@ -219,6 +234,15 @@ def _kept_singular_values(E):
     return np.stack([Ra, Ra, Rb, Rb]), np.stack([U[:, 2], -U[:, 2], U[:, 2], -U[:, 2]])
 
 
+def _vt_transposed(E):
+    """Vt transposed once more: U W V, with the det fix (tests)."""
+    U, _, Vt = np.linalg.svd(E)
+    U, Vt = U * np.sign(np.linalg.det(U)), Vt * np.sign(np.linalg.det(Vt))
+    W = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    Ra, Rb = U @ W @ Vt.T, U @ W.T @ Vt.T
+    return np.stack([Ra, Ra, Rb, Rb]), np.stack([U[:, 2], -U[:, 2], U[:, 2], -U[:, 2]])
+
+
 def _camera_centre(E):
     Rs, ts = decompose_essential(E)
     return Rs, -np.einsum("kji,kj->ki", Rs, ts)  # C = -R^T t for each candidate
@@ -240,6 +264,7 @@ register_exercise(
         diagnose=_essential_diagnosis,
         wrong_variants=(
             (_no_det_fix, "det = -1"),
+            (_vt_transposed, "U @ W @ Vt.T"),
             (_right_null_vector, "LEFT null vector"),
             (_camera_centre, "camera 2's centre C"),
             (

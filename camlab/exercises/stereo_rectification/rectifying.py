@@ -229,5 +229,9 @@ register_exercise(
             (lambda C1, C2, R1: _fusiello(C1, C2, np.array([0.0, 1.0, 0.0])), "world's y axis"),
         ),
         teaching=rectifying_rotation,
+        solution_note=(
+            "# camlab's rectify_calibrated (camlab.rectification.rectify_calibrated) builds R_new the same\n"
+            "# way, but takes z from the mean of both cameras' optical axes, not camera 1's alone"
+        ),
     )
 )

@@ -28,6 +28,27 @@ def _subpixel_cases():
     return [(ds1, v_cost), (ds2, lopsided), (ds1, noisy)]
 
 
+_FLOOR = (
+    "you divided with // (floor division): it rounds the vertex's offset, a fraction between -0.5 and "
+    "0.5, down to 0 or -1. Use true division, /"
+)
+
+
+def _whole_pixel_or_floor(run) -> str:
+    """The whole-pixel winner, or floor division, told apart on a cost whose vertex lies below it."""
+    ds = np.arange(8, 20)
+    try:  # the vertex at 12.7: floor division gives 12, a kept winner 13
+        again = float(np.asarray(run(ds, 100 + 10 * np.abs(ds - 12.7)))) if run else np.nan
+    except Exception:
+        again = np.nan
+    if np.isclose(again, 12.0):
+        return _FLOOR
+    return (
+        "you kept the whole-pixel winner: step 3 fits a parabola through the costs at d - 1, d, d + 1 "
+        "and moves d to its vertex"
+    )
+
+
 def _vertex(c, k):
     cm, c0, cp = c[k - 1], c[k], c[k + 1]
     return (cm - cp) / (2 * (cm - 2 * c0 + cp))
@@ -35,7 +56,7 @@ def _vertex(c, k):
 
 # an off-by-one triple on a straight stretch of the cost has no vertex: its division by 0 is no error here
 @np.errstate(divide="ignore", invalid="ignore")
-def _subpixel_diagnosis(args, got, expected) -> str:
+def _subpixel_diagnosis(args, got, expected, run=None) -> str:
     ds, c = (np.asarray(a, dtype=float) for a in args)
     if np.ndim(got) != 0:
         return f"return one number, the sub-pixel disparity (a float); got shape {np.shape(got)}"
@@ -59,10 +80,13 @@ def _subpixel_diagnosis(args, got, expected) -> str:
             "your offset is twice the vertex's: the parabola's minimum is (c- - c+) / (2 (c- - 2 c0 + c+)); "
             "the factor 2 in the denominator is missing",
         ),
+        (ds[k], _whole_pixel_or_floor(run)),
+        (ds[k] + np.floor(off), _FLOOR),
         (
-            ds[k],
-            "you kept the whole-pixel winner: step 3 fits a parabola through the costs at d - 1, d, d + 1 "
-            "and moves d to its vertex",
+            ds[k] + (c[k - 1] - c[k + 1]) / (2 * (max(c[k - 1], c[k + 1]) - c[k])),
+            "you fitted the equiangular line (two lines of opposite slope through the three costs, "
+            "Shimizu & Okutomi), exact for a V-shaped cost; step 3 asks for the parabola's vertex, "
+            "d + (c- - c+) / (2 (c- - 2 c0 + c+))",
         ),
         (off, "you returned the offset alone: add it to the whole-pixel winner ds[k]"),
         (
@@ -144,6 +168,20 @@ def _reference(ds, cost):
     return float(-b / (2 * a))
 
 
+def _floor_division(ds, c):
+    """The vertex with // where / belongs (tests)."""
+    c = np.asarray(c, dtype=float)
+    k = int(np.argmin(c))
+    return float(ds[k] + (c[k - 1] - c[k + 1]) // (2 * (c[k - 1] - 2 * c[k] + c[k + 1])))
+
+
+def _equiangular(ds, c):
+    """The equiangular-line fit, exact for a V, in place of the parabola (tests)."""
+    c = np.asarray(c, dtype=float)
+    k = int(np.argmin(c))
+    return float(ds[k] + (c[k - 1] - c[k + 1]) / (2 * (max(c[k - 1], c[k + 1]) - c[k])))
+
+
 def _flip(ds, c):
     k = int(np.argmin(c))
     return ds[k] - _vertex(np.asarray(c, float), k)
@@ -159,6 +197,7 @@ register_exercise(
             np.ndim(got) == 0 and np.isclose(float(got), expected, rtol=0, atol=1e-6)
         ),
         diagnose=_subpixel_diagnosis,
+        diagnosis_runs=True,  # floor division and a kept winner tie where the vertex is above d_k
         exception_hint=_subpixel_exception_hint,
         wrong_variants=(
             (_flip, "sign is flipped"),
@@ -173,6 +212,8 @@ register_exercise(
                 "factor 2",
             ),
             (lambda ds, c: float(ds[np.argmin(c)]), "whole-pixel winner"),
+            (_floor_division, "floor division"),
+            (_equiangular, "equiangular line"),
             (lambda ds, c: _vertex(np.asarray(c, float), int(np.argmin(c))), "offset alone"),
             (
                 lambda ds, c: (

@@ -173,7 +173,12 @@ def _triangulation_diagnosis(args, got, expected) -> str:
         if np.allclose(g, wrong, rtol=1e-6, atol=1e-9):
             return hint
     if np.allclose(g, -expected, rtol=1e-6):
-        return "your X is -X: a sign slip in the rows (p1 - u p3 is fine, but use the same sign for all four)"
+        return (
+            "your X is -X: a de-homogenisation slip. You divided by |X_h[3]| (or by -X_h[3]); the "
+            "SVD returns the null vector with an arbitrary sign, so divide by X_h[3] itself, sign "
+            "included: X = X_h[:3] / X_h[3]. (A row's sign cannot cause this: flipping a row of A "
+            "leaves its null vector unchanged.)"
+        )
     for factor, unit in ((1000.0, "millimetres"), (100.0, "centimetres")):
         if np.allclose(g, factor * expected, rtol=1e-6) or np.allclose(
             g, expected / factor, rtol=1e-6
@@ -269,6 +274,12 @@ register_exercise(
                     np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
                 ),
                 "divided by X_h[2]",
+            ),
+            (
+                lambda P1, P2, x1, x2: (lambda Xh: Xh[:3] / -abs(Xh[3]))(
+                    np.linalg.svd(_rows(P1, P2, x1, x2))[2][-1]
+                ),
+                "de-homogenisation slip",
             ),
         ),
         teaching=triangulate_point,
