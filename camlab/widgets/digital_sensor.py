@@ -38,16 +38,18 @@ def _side_view(fig):
     ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
     ax.plot([0], [0], "o", color="k", ms=4)  # the pinhole (camera centre), at Z = 0
     ax.text(0.4, -0.3, "pinhole", fontsize=7.5, va="top")
-    # the plane thick and on top; the two marks just above it, so a 0.6 mm plane (2 µm pixels) still shows
+    # the plane thick; the two marks on it, drawn over it with a white halo (a 0.6 mm plane, 2 µm pixels, still shows)
     (plane,) = ax.plot([], [], color=palette.BLUE, lw=3.5, solid_capstyle="butt", zorder=3)
     (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
-    (centre,) = ax.plot([], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo())
+    (centre,) = ax.plot(
+        [], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo(), zorder=4
+    )
     (principal,) = ax.plot(
-        [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo()
+        [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo(), zorder=4
     )
     edge_text = dict(fontsize=7.5, va="top", color=palette.BLUE)
     left_label = ax.text(0, 2.6, "u = −½", ha="right", **edge_text)
-    right_label = ax.text(0, 2.6, "W − ½", ha="left", **edge_text)
+    right_label = ax.text(0, 2.6, "u = W − ½", ha="left", **edge_text)
 
     def update(pitch_mm, cx_px, width_px):
         # a pixel u on the virtual plane sits at X = (u - c_x) s, Z = f: left of the axis when u < c_x
@@ -56,8 +58,10 @@ def _side_view(fig):
         rays.set_data(
             [0, x_left * 2, np.nan, 0, x_right * 2], [0, 6, np.nan, 0, 6]
         )  # on to Z = 6 mm
-        centre.set_data([((width_px - 1) / 2 - cx_px) * pitch_mm], [3.45])
-        principal.set_data([0], [3.45])
+        centre.set_data(
+            [((width_px - 1) / 2 - cx_px) * pitch_mm], [3]
+        )  # on the plane, drawn over it
+        principal.set_data([0], [3])
         left_label.set_position((x_left - 0.3, 2.6))
         right_label.set_position((x_right + 0.3, 2.6))
 
@@ -86,7 +90,7 @@ def pixel_pitch():
     view.fig.set_layout_engine(
         "none"
     )  # placed by hand: the image, its legend, and the top view beside them
-    ax_img = view.fig.add_axes((0.07, 0.1, 0.56, 0.78), anchor="W")
+    ax_img = view.fig.add_axes((0.07, 0.115, 0.56, 0.765), anchor="W")  # room below for "u (px)"
     scene = [
         scenes.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)),
         scenes.photo_plane(0.25, t=(0.34, 0.05, 1.3)),
@@ -146,7 +150,7 @@ def pixel_pitch():
         readout.value = monospace(
             f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
             f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
-            f"horizontal FOV {fov:.1f} deg\n  = {left:.1f} left + {right:.1f} right of the axis"
+            f"horizontal FOV {fov:.1f}°\n  = {left:.1f}° left + {right:.1f}° right of the axis"
         )
 
     return build_demo(
@@ -426,7 +430,7 @@ def bit_depth_and_noise():
             f"{2**bits} levels\nmodel SNR {snr:.1f} at half of white\n"
             f"grey background: model SNR {model_bg:.1f}, measured "
             + (
-                f"-- ({100 * one_code:.2f} % on one code: banding, not noise)"
+                f"-- ({np.floor(1e4 * one_code) / 100:.2f} % on one code: banding, not noise)"
                 if np.isinf(measured_bg)
                 else f"{measured_bg:.1f}"
             )
@@ -604,12 +608,14 @@ def demosaicing():
             zoom_psnr=sensor.psnr(truth[crop], out[crop]),
             zoom_shows="error" if values["zoom_error"] else "image",
         )
-        wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
+        wrong = assumed != pattern and method != "truth"
         score = (
             "the reference the PSNRs compare with"
             if method == "truth"
+            else f" as {assumed} (wrong): {state['psnr']:.1f} dB"  # short: it sits between two titles
+            if wrong
             else f"PSNR {state['psnr']:.1f} dB (linear)"
         )
-        ax_full.set_title(f"{method}{wrong}: {score}", fontsize=10)
+        ax_full.set_title(f"{method}{score}" if wrong else f"{method}: {score}", fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")
