@@ -608,14 +608,12 @@ def demosaicing():
             zoom_psnr=sensor.psnr(truth[crop], out[crop]),
             zoom_shows="error" if values["zoom_error"] else "image",
         )
-        wrong = assumed != pattern and method != "truth"
-        score = (
-            "the reference the PSNRs compare with"
-            if method == "truth"
-            else f" as {assumed} (wrong): {state['psnr']:.1f} dB"  # short: it sits between two titles
-            if wrong
-            else f"PSNR {state['psnr']:.1f} dB (linear)"
-        )
-        ax_full.set_title(f"{method}{score}" if wrong else f"{method}: {score}", fontsize=10)
+        if method == "truth":
+            score = ": the reference the PSNRs compare with"
+        elif assumed != pattern:  # short: this title sits between two others
+            score = f" as {assumed} (wrong): {state['psnr']:.1f} dB"
+        else:
+            score = f": PSNR {state['psnr']:.1f} dB (linear)"
+        ax_full.set_title(method + score, fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")
