@@ -38,14 +38,15 @@ def _side_view(fig):
     ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
     ax.plot([0], [0], "o", color="k", ms=4)  # the pinhole (camera centre), at Z = 0
     ax.text(0.4, -0.3, "pinhole", fontsize=7.5, va="top")
-    # the plane thick; the two marks on it, drawn over it with a white halo (a 0.6 mm plane, 2 µm pixels, still shows)
+    # the plane thick; the two marks just above it, so a 0.6 mm plane (2 µm pixels) still shows, with leaders down to it
     (plane,) = ax.plot([], [], color=palette.BLUE, lw=3.5, solid_capstyle="butt", zorder=3)
     (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
+    (leaders,) = ax.plot([], [], color="k", lw=0.8, zorder=4)
     (centre,) = ax.plot(
-        [], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo(), zorder=4
+        [], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo(), zorder=5
     )
     (principal,) = ax.plot(
-        [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo(), zorder=4
+        [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo(), zorder=5
     )
     edge_text = dict(fontsize=7.5, va="top", color=palette.BLUE)
     left_label = ax.text(0, 2.6, "u = −½", ha="right", **edge_text)
@@ -58,14 +59,16 @@ def _side_view(fig):
         rays.set_data(
             [0, x_left * 2, np.nan, 0, x_right * 2], [0, 6, np.nan, 0, 6]
         )  # on to Z = 6 mm
+        x_centre = ((width_px - 1) / 2 - cx_px) * pitch_mm
         centre.set_data(
-            [((width_px - 1) / 2 - cx_px) * pitch_mm], [3]
-        )  # on the plane, drawn over it
-        principal.set_data([0], [3])
+            [x_centre], [3.45]
+        )  # just above the plane, each on a leader down to its point on it
+        principal.set_data([0], [3.45])
+        leaders.set_data([x_centre, x_centre, np.nan, 0, 0], [3, 3.45, np.nan, 3, 3.45])
         left_label.set_position((x_left - 0.3, 2.6))
         right_label.set_position((x_right + 0.3, 2.6))
 
-    return (plane, rays, centre, principal, left_label, right_label), update
+    return (plane, rays, leaders, centre, principal, left_label, right_label), update
 
 
 @register(
