@@ -392,6 +392,16 @@ def _in_place_message(
             "`a / a[2, 2]`, `a - m`",
         )
         copy = "convert each array to a new one first (`a = np.array(a, dtype=float)` always copies; np.asarray returns a float64 array itself)"
+    elif np.ndim(args[changed[0]]) == 1 and a in (
+        "image",
+        "img",
+        "raw",
+        "frame",
+    ):  # an image, flattened
+        examples, new = (
+            f"`np.clip({a}, 0, 1, out={a})`, `{a} *= {sc}`, `{a}[{a} > 1] = 1`",
+            f"`np.clip({a}, 0, 1)`, `{a} * {sc}`",
+        )
     elif np.ndim(args[changed[0]]) == 1:
         examples, new = (
             f"`{a}[1] = -{a}[1]`, `{a} += {k}`, `{a}.sort()`",

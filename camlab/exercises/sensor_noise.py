@@ -346,13 +346,34 @@ def _diagnose(args, got, expected) -> str:
             "root, in DN, times the gain g (electrons per DN)"
         )
     if np.isclose(g[0], e[0], rtol=0.03):
-        return (
-            "the gain is right, the read noise is not: it is the spread of the darks' difference, "
-            "g * sqrt(var(d1 - d2) / 2), in electrons"
-        )
+        return _read_noise_hint(args, g)
     return (
         "per flat pair: mean = (a.mean() + b.mean()) / 2, var = np.var(a - b) / 2 (in float); g = 1 / slope "
         "of the line var = mean / g + c fitted over all the pairs; read noise = g * sqrt(var(d1 - d2) / 2)"
+    )
+
+
+def _read_noise_hint(args, got) -> str:
+    """The hint for a right gain and a wrong read noise: the intercept's forms named, else the method."""
+    darks, flats = args
+    g = reference(darks, flats)[0]
+    black = np.mean([np.mean(np.asarray(d, dtype=float)) for d in darks])
+    means, variances = _pair_stats(flats, False, True, spread=np.var)
+    intercepts = [np.polyfit(means - shift, variances, 1)[1] for shift in (0.0, black)]
+    # the intercept as it is or less 1/12, negative ones made positive: g sqrt(|c|) in any of its forms
+    forms = [g * np.sqrt(abs(c - q)) for c in intercepts for q in (0.0, 1 / 12)]
+    forms += [np.sqrt(abs(c - q)) for c in intercepts for q in (0.0, 1 / 12)]  # left in DN too
+    if np.isclose(got[1], forms, rtol=0.03).any():
+        return (
+            f"the gain is right, the read noise is not: it comes from the photon-transfer line's intercept c. "
+            f"These frames carry a black level of {black:.0f} DN, so with the raw means the intercept is "
+            f"sigma_r**2 / g**2 + 1/12 - black / g, not sigma_r**2 / g**2 + 1/12; and even above the black level "
+            f"it is imprecise (a few DN**2 read off a line fitted to variances of hundreds). Measure the read "
+            f"noise where it is the whole signal, in the dark pair: g * sqrt(var(d1 - d2) / 2), in electrons"
+        )
+    return (
+        "the gain is right, the read noise is not: it is the spread of the darks' difference, "
+        "g * sqrt(var(d1 - d2) / 2), in electrons (not the fit's intercept, which the black level shifts)"
     )
 
 
@@ -405,6 +426,13 @@ def _describe(args) -> str:
     )
 
 
+def _intercept_variant(darks, flats):
+    """The read noise from the raw means' intercept, made positive: g sqrt(|c - 1/12|)."""
+    means, variances = _pair_stats(flats)
+    slope, c = np.polyfit(means, variances, 1)
+    return 1 / slope, np.sqrt(abs(c - 1 / 12)) / slope
+
+
 def _wrapped_difference(darks, flats):
     """The uint16 frames subtracted as they are: a - b wraps around below 0."""
     d1, d2 = darks
@@ -453,6 +481,7 @@ register_exercise(
         describe_input=_describe,
         wrong_variants=(
             (lambda d, f: _std_fit_variant(d, f), "what a standard deviation gives"),
+            (lambda d, f: _intercept_variant(d, f), "carry a black level of"),
             (lambda d, f: _one_pair_variant(d, f), "flat pair's mean / var"),
             (lambda d, f: _pair_mean_variant(d, f), "the variance of the pair's mean image"),
             (lambda d, f: _estimate(d, f, one_frame=True), "one flat frame's variance"),

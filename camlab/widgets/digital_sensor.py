@@ -38,16 +38,19 @@ def _side_view(fig):
     ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
     ax.plot([0], [0], "o", color="k", ms=4)  # the pinhole (camera centre), at Z = 0
     ax.text(0.4, -0.3, "pinhole", fontsize=7.5, va="top")
-    # the plane thick and on top; the two marks just above it, so a 0.6 mm plane (2 µm pixels) still shows
+    # the plane thick; the two marks just above it, so a 0.6 mm plane (2 µm pixels) still shows, with leaders down to it
     (plane,) = ax.plot([], [], color=palette.BLUE, lw=3.5, solid_capstyle="butt", zorder=3)
     (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
-    (centre,) = ax.plot([], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo())
+    (leaders,) = ax.plot([], [], color="k", lw=0.8, zorder=4)
+    (centre,) = ax.plot(
+        [], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo(), zorder=5
+    )
     (principal,) = ax.plot(
-        [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo()
+        [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo(), zorder=5
     )
     edge_text = dict(fontsize=7.5, va="top", color=palette.BLUE)
     left_label = ax.text(0, 2.6, "u = −½", ha="right", **edge_text)
-    right_label = ax.text(0, 2.6, "W − ½", ha="left", **edge_text)
+    right_label = ax.text(0, 2.6, "u = W − ½", ha="left", **edge_text)
 
     def update(pitch_mm, cx_px, width_px):
         # a pixel u on the virtual plane sits at X = (u - c_x) s, Z = f: left of the axis when u < c_x
@@ -56,12 +59,16 @@ def _side_view(fig):
         rays.set_data(
             [0, x_left * 2, np.nan, 0, x_right * 2], [0, 6, np.nan, 0, 6]
         )  # on to Z = 6 mm
-        centre.set_data([((width_px - 1) / 2 - cx_px) * pitch_mm], [3.45])
+        x_centre = ((width_px - 1) / 2 - cx_px) * pitch_mm
+        centre.set_data(
+            [x_centre], [3.45]
+        )  # just above the plane, each on a leader down to its point on it
         principal.set_data([0], [3.45])
+        leaders.set_data([x_centre, x_centre, np.nan, 0, 0], [3, 3.45, np.nan, 3, 3.45])
         left_label.set_position((x_left - 0.3, 2.6))
         right_label.set_position((x_right + 0.3, 2.6))
 
-    return (plane, rays, centre, principal, left_label, right_label), update
+    return (plane, rays, leaders, centre, principal, left_label, right_label), update
 
 
 @register(
@@ -86,7 +93,7 @@ def pixel_pitch():
     view.fig.set_layout_engine(
         "none"
     )  # placed by hand: the image, its legend, and the top view beside them
-    ax_img = view.fig.add_axes((0.07, 0.1, 0.56, 0.78), anchor="W")
+    ax_img = view.fig.add_axes((0.07, 0.115, 0.56, 0.765), anchor="W")  # room below for "u (px)"
     scene = [
         scenes.checkerboard((9, 6), 0.05, t=(-0.2, -0.125, 1.2)),
         scenes.photo_plane(0.25, t=(0.34, 0.05, 1.3)),
@@ -146,7 +153,7 @@ def pixel_pitch():
         readout.value = monospace(
             f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
             f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
-            f"horizontal FOV {fov:.1f} deg\n  = {left:.1f} left + {right:.1f} right of the axis"
+            f"horizontal FOV {fov:.1f}°\n  = {left:.1f}° left + {right:.1f}° right of the axis"
         )
 
     return build_demo(
@@ -366,7 +373,8 @@ def bit_depth_and_noise():
         the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` as a
         fraction of full scale, ``electrons`` of the white, the dark uniform and the background,
         ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``snr_background`` the model's and the
-        measured SNR in the grey background, inf where every pixel there has one code).
+        measured SNR in the grey background, inf where 90 % or more of it has one code, and
+        ``background_one_code`` that share).
     """
     controls = _noise_controls()
     view = FigureView(figsize=(9, 4))
@@ -393,8 +401,12 @@ def bit_depth_and_noise():
         # measured where the truth is flat, the grey background: mean over spread, against the model there
         n_bg, flat = BACKGROUND * expo * full_well, shown[clean == BACKGROUND]
         model_bg = n_bg / np.sqrt(n_bg + values["read_noise"] ** 2 + step**2 / 12)
-        # one code everywhere: no spread (a float std of equal values is ~1e-17, not 0: test the codes)
-        measured_bg = np.inf if np.ptp(flat) == 0 else float(flat.mean() / flat.std())
+        # the share of the background on its commonest code: at 90 % or more the spread rests on a few stray
+        # pixels (4 bits: about 1 in 10^4), so no SNR is measured (and a float std of equal values is ~1e-17)
+        one_code = float(
+            np.unique(dn[clean == BACKGROUND], return_counts=True)[1].max() / flat.size
+        )
+        measured_bg = np.inf if one_code >= 0.9 else float(flat.mean() / flat.std())
         electrons = {
             "white": expo * full_well,
             "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
@@ -408,6 +420,7 @@ def bit_depth_and_noise():
             dn_electrons=step,
             clean_row=clean[row],
             snr_background=(float(model_bg), measured_bg),
+            background_one_code=one_code,
         )
         dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"  # 3 significant figures: 11.8, 0.733, 3000
         ax_p.set_title(
@@ -419,7 +432,12 @@ def bit_depth_and_noise():
         readout.value = monospace(
             f"{2**bits} levels\nmodel SNR {snr:.1f} at half of white\n"
             f"grey background: model SNR {model_bg:.1f}, measured "
-            f"{'-- (one code: no spread)' if np.isinf(measured_bg) else f'{measured_bg:.1f}'}\n"
+            + (
+                f"-- ({np.floor(1e4 * one_code) / 100:.2f} % on one code: banding, not noise)"
+                if np.isinf(measured_bg)
+                else f"{measured_bg:.1f}"
+            )
+            + "\n"
             f"rms error {state['rms_error']:.3f} of full scale"
         )
 
@@ -593,12 +611,12 @@ def demosaicing():
             zoom_psnr=sensor.psnr(truth[crop], out[crop]),
             zoom_shows="error" if values["zoom_error"] else "image",
         )
-        wrong = "" if assumed == pattern or method == "truth" else f" as {assumed} (wrong!)"
-        score = (
-            "the reference the PSNRs compare with"
-            if method == "truth"
-            else f"PSNR {state['psnr']:.1f} dB (linear)"
-        )
-        ax_full.set_title(f"{method}{wrong}: {score}", fontsize=10)
+        if method == "truth":
+            score = ": the reference the PSNRs compare with"
+        elif assumed != pattern:  # short: this title sits between two others
+            score = f" as {assumed} (wrong): {state['psnr']:.1f} dB"
+        else:
+            score = f": PSNR {state['psnr']:.1f} dB (linear)"
+        ax_full.set_title(method + score, fontsize=10)
 
     return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")

@@ -276,6 +276,22 @@ def _ring_only(raw, got, expected) -> str | None:
     )
 
 
+def _samples_changed_hint(g, e, m) -> str:
+    """The hint for measured samples that changed: a plain tent convolution's double slip, or the samples alone."""
+    filled = ~m[1:-1, 1:-1, 1]  # green's interpolated sites inside the border
+    if filled.any() and np.allclose(g[1:-1, 1:-1, 1][filled], 2 * e[1:-1, 1:-1, 1][filled]):
+        return (
+            "the measured samples changed, and green at red and blue sites is twice the mean: a plain "
+            "convolution with the tent kernel, not normalised (its 4 cross weights of 1/2 sum to 2, and at a "
+            "green site it adds the 4 diagonal greens to the sample); divide by the weights actually used, "
+            "c = k * (m r) / (k * m), then keep each measured sample"
+        )
+    return (
+        "the measured samples changed: keep each pixel's own colour as measured, and check which "
+        "colour sits where in the pattern (RGGB: R at row 0, column 0)"
+    )
+
+
 def _interpolation_cause(raw, pattern, g, e) -> str:
     """Why the image is wrong when the whole-image slips are ruled out.
 
@@ -294,10 +310,7 @@ def _interpolation_cause(raw, pattern, g, e) -> str:
                 "over 2 x 2 blocks, range(0, H - 1, 2), or masks for H // 2 blocks stop one short; fill the "
                 "last row and column too"
             )
-        return (
-            "the measured samples changed: keep each pixel's own colour as measured, and check which "
-            "colour sits where in the pattern (RGGB: R at row 0, column 0)"
-        )
+        return _samples_changed_hint(g, e, m)
     if np.issubdtype(raw.dtype, np.integer):
         return (
             f"this mosaic is {raw.dtype}, as a raw file's is: sums of its values wrap around (uint8 stops at 255) "
@@ -406,6 +419,16 @@ def _unnormalised_tent_demosaic(raw, pattern):
     return np.where(m, raw[..., None], est)
 
 
+def _unnormalised_tent_unkept_demosaic(raw, pattern):
+    """The plain tent convolution with no sample kept: two slips, one cause (no normalisation)."""
+    from scipy.ndimage import convolve
+
+    raw = np.asarray(raw, dtype=float)
+    m = sensor.bayer_masks(raw.shape, pattern)
+    k = np.array([[1, 2, 1], [2, 4, 2], [1, 2, 1]]) / 4.0
+    return np.stack([convolve(raw * m[..., c], k, mode="constant") for c in range(3)], axis=2)
+
+
 def _one_line_green_demosaic(raw, pattern, axis=1):
     """Green at red and blue sites from its left and right neighbours only (axis 0: above and below)."""
     out = sensor.demosaic_bilinear(raw, pattern)
@@ -511,6 +534,7 @@ register_exercise(
             (_diagonal_only_demosaic, "red or blue at a green site"),
             (cross_kernel_demosaic, "are all green"),
             (_unnormalised_tent_demosaic, "twice the mean"),
+            (_unnormalised_tent_unkept_demosaic, "twice the mean: a plain convolution"),
             (_reflect_border_demosaic, "mode='reflect', scipy.ndimage.convolve's default"),
             (
                 lambda raw, pattern: sensor.demosaic_bilinear(

@@ -115,6 +115,21 @@ _MISTAKES = (
         ),
     ),
     Mistake(
+        "encoded before quantising",
+        lambda s: (
+            not _same_after_cast(s.g, s.right)
+            and any(
+                _same_after_cast(s.g, np.clip(np.rint(v * s.levels), 0, s.levels))
+                for v in (sensor.gamma_encode(s.clipped), s.clipped ** (1 / 2.2))
+            )
+        ),
+        (
+            "you gamma-encoded (sRGB or a 1/2.2 power) before quantising: the converter quantises the linear "
+            "fraction of full scale the sensor measured, I itself; sRGB encoding comes later in the pipeline "
+            "(section 5), so DN = round(I * (2**bits - 1)), clipped"
+        ),
+    ),
+    Mistake(
         "cast before clipping",
         lambda s: (
             any(_same_after_cast(s.g, np.clip(w, 0, s.levels)) for w in s.wrapped)
@@ -385,6 +400,10 @@ register_exercise(
                 "an ADC's floor",
             ),
             (lambda img, bits: np.rint(img * (2**bits - 1)).astype(np.int64), "dtype is int64"),
+            (
+                lambda img, bits: sensor.quantise(sensor.gamma_encode(np.clip(img, 0, 1)), bits),
+                "sRGB encoding comes later",
+            ),
             (
                 lambda img, bits: np.clip(np.rint(img * (2**bits - 1)), 0, 2**bits - 1),
                 "dtype is float64",
