@@ -177,7 +177,16 @@ def _context(H_of, Sigma_p, a, b, sigma_u):
             + pix2
         ),
         absolute=np.sqrt(np.abs(g_p) @ np.abs(Sigma_p) @ np.abs(g_p) + pix2),
+        translation_only=np.sqrt(g_p[3:] @ Sigma_p[3:, 3:] @ g_p[3:] + pix2),
+        rotation_only=np.sqrt(g_p[:3] @ Sigma_p[:3, :3] @ g_p[:3] + pix2),
+        half_pixel={d: _shifted(H_of, Sigma_p, a, b, sigma_u, d) for d in (0.5, -0.5)},
     )
+
+
+def _shifted(H_of, Sigma_p, a, b, sigma_u, d):
+    """The right sigma with both ends moved by d px in u and v (a half-pixel slip)."""
+    g_p, g_u = _parts(H_of, Sigma_p, np.asarray(a) + d, np.asarray(b) + d)
+    return np.sqrt(g_p @ Sigma_p @ g_p + sigma_u**2 * g_u @ g_u)
 
 
 _MISTAKES = (
@@ -300,6 +309,31 @@ _MISTAKES = (
         "use the signed gradient and the signed covariance.",
     ),
     Mistake(
+        "rotation left out",
+        lambda c: c.translation_only,
+        "you perturbed only the translation (p[3:6]): the rotation's three parameters p[0:3] move the "
+        "homography too, and are correlated with the translation, so g_p has six entries and the pose term "
+        "is the full g_p @ Sigma_p @ g_p.",
+    ),
+    Mistake(
+        "translation left out",
+        lambda c: c.rotation_only,
+        "you perturbed only the rotation (p[0:3]): the translation p[3:6] moves the homography too, so "
+        "g_p has six entries and the pose term is the full g_p @ Sigma_p @ g_p.",
+    ),
+    Mistake(
+        "half pixel +",
+        lambda c: c.half_pixel[0.5],
+        "your ends are shifted by half a pixel: pixel centres are at integers (docs/conventions.md), so "
+        "a and b are already the points to measure; do not add or subtract 0.5.",
+    ),
+    Mistake(
+        "half pixel -",
+        lambda c: c.half_pixel[-0.5],
+        "your ends are shifted by half a pixel: pixel centres are at integers (docs/conventions.md), so "
+        "a and b are already the points to measure; do not add or subtract 0.5.",
+    ),
+    Mistake(
         "millimetres",
         lambda c: c.mm,
         "your sigma is 1000 times too big: the plane is in metres, so sigma_L comes out in metres.",
@@ -308,6 +342,16 @@ _MISTAKES = (
 
 
 def _diagnosis(args, got, expected) -> str:
+    try:
+        nan = bool(np.isnan(float(got)))
+    except (TypeError, ValueError):
+        nan = False
+    if nan:
+        return (
+            "your sigma is NaN, the square root of a negative number: np.sqrt(Sigma_p) elementwise takes "
+            "roots of the negative covariances. Use Sigma_p itself in g_p @ Sigma_p @ g_p, add "
+            "sigma_u**2 * g_u @ g_u, and take one square root of the sum at the end."
+        )
     if not is_number(got):
         return not_one_number(got, "sigma_L in metres")
     hint = first_mistake(
@@ -317,6 +361,13 @@ def _diagnosis(args, got, expected) -> str:
         f"expected sigma_L = {1000 * expected:.4f} mm, got {1000 * float(got):.4f} mm: take g_p (6) and "
         "g_u (4) by central differences of the length, then sqrt(g_p @ Sigma_p @ g_p + sigma_u**2 * g_u @ g_u)."
     )
+
+
+def _elementwise_root(H_of, Sigma_p, a, b, sigma_u):
+    """A slip: np.sqrt(Sigma_p) elementwise in the pose term (NaN where a covariance is negative)."""
+    g_p, g_u = _parts(H_of, Sigma_p, a, b)
+    with np.errstate(invalid="ignore"):
+        return float(np.sqrt(g_p @ np.sqrt(Sigma_p) @ g_p + sigma_u**2 * g_u @ g_u))
 
 
 def _variant(name):
@@ -352,6 +403,11 @@ register_exercise(
             (_variant("rotation per degree"), "per degree"),
             (_variant("rotation degrees inverted"), "57.3"),
             (_variant("absolute values"), "absolute values"),
+            (_variant("rotation left out"), "only the translation"),
+            (_variant("translation left out"), "only the rotation"),
+            (_variant("half pixel +"), "half a pixel"),
+            (_variant("half pixel -"), "half a pixel"),
+            (_elementwise_root, "NaN"),
         ),
         teaching=length_sigma,
         solution_note=(

@@ -22,18 +22,58 @@ from ._answers import same_array, shape_problem
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 
 
+def _look(centre, target) -> np.ndarray:
+    """The rotation cam_from_world of a camera at ``centre`` looking at ``target`` (board y down)."""
+    z = (target - centre) / np.linalg.norm(target - centre)
+    x = np.cross([0.0, 1.0, 0.0], z)
+    x /= np.linalg.norm(x)
+    return np.vstack([x, np.cross(z, x), z])
+
+
 def _cases():
-    """(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u): two random but realistic cases (metres, radians, px)."""
-    rng = np.random.default_rng(31)
+    """(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u): a real triangulation, as in section 3 (metres, px).
+
+    A 9 x 6 board of 25 mm squares (z = 0) seen by two cameras 0.45 m from its centre, their rays to a
+    box's corner 5 cm above the board 60 and 25 degrees apart; each pose's covariance from its 54
+    corners at 0.14 px, and the triangulated corner's Jacobians by central differences of the DLT.
+    """
+    from ..camera import rotation_from_axis_angle
+    from ..epipolar import triangulate_points
+    from ..measurement import pose_covariance
+
+    K = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
+    board = np.array([[0.025 * i, 0.025 * j, 0.0] for j in range(6) for i in range(9)])
+    corner, middle = np.array([0.05, 0.025, -0.05]), np.array([0.1, 0.0625, 0.0])
     cases = []
-    for sigma_u in (0.4, 0.3):
-        J_A, J_B = (rng.normal(0, 0.3, (3, 6)) for _ in range(2))
-        Sigma_A, Sigma_B = (
-            (lambda M: 1e-7 * (M @ M.T + 0.5 * np.eye(6)))(rng.normal(size=(6, 6)))
-            for _ in range(2)
+    for alpha, sigma_u in ((60, 0.4), (25, 0.3)):  # not 0.5: 2 * 0.5**2 == 0.5
+        poses = []
+        for side in (-1, 1):
+            a = np.radians(side * alpha / 2)
+            C = middle + 0.45 * np.array([np.sin(a), -0.3, -np.cos(a)]) / np.linalg.norm(
+                [np.sin(a), -0.3, -np.cos(a)]
+            )
+            R = _look(C, middle)
+            poses.append((R, -R @ C))
+        pixels = [(K @ (R @ corner + t))[:2] / (K @ (R @ corner + t))[2] for R, t in poses]
+
+        def point(
+            d, u, poses=poses, K=K
+        ):  # d: both poses' updates (12), u: the four pixel coordinates
+            P = [
+                K @ np.column_stack([rotation_from_axis_angle(dk[:3]) @ R, t + dk[3:]])
+                for (R, t), dk in zip(poses, d.reshape(2, 6), strict=True)
+            ]
+            return triangulate_points(P[0], P[1], u[:2], u[2:])
+
+        d0, u0 = np.zeros(12), np.concatenate(pixels)
+        J = np.column_stack(
+            [(point(d0 + h, u0) - point(d0 - h, u0)) / 2e-6 for h in 1e-6 * np.eye(12)]
         )
-        J_u = rng.normal(0, 4e-4, (3, 4))
-        cases.append((J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u))
+        J_u = np.column_stack(
+            [(point(d0, u0 + h) - point(d0, u0 - h)) / 2e-4 for h in 1e-4 * np.eye(4)]
+        )
+        Sigma_A, Sigma_B = (pose_covariance(K, R, t, board, 0.14) for R, t in poses)
+        cases.append((J[:, :6], Sigma_A, J[:, 6:], Sigma_B, J_u, sigma_u))
     return cases
 
 
@@ -74,6 +114,17 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         + sigma_u**2 * u,
         picks_per_end=a + b + sigma_u**2 * u / 2,
         mm=1e6 * (a + b + sigma_u**2 * u),
+        swapped=J_A @ Sigma_B @ J_A.T + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
+        identity=a + b + sigma_u**2 * np.eye(3),
+        picks_twice=a + b + 2 * sigma_u**2 * u,
+        cross=a + b + sigma_u**2 * u + J_A @ Sigma_A @ J_B.T,
+        cross_sym=a + b + sigma_u**2 * u + J_A @ Sigma_A @ J_B.T + J_B @ Sigma_A @ J_A.T,
+        all_scaled=sigma_u**2 * (a + b + u),
+        diagonal=J_A @ np.diag(np.diag(Sigma_A)) @ J_A.T
+        + J_B @ np.diag(np.diag(Sigma_B)) @ J_B.T
+        + sigma_u**2 * u,
+        averaged=(a + b) / 2 + sigma_u**2 * u,
+        picks_diagonal=a + b + sigma_u**2 * np.diag(np.diag(u)),
     )
 
 
@@ -116,6 +167,60 @@ _MISTAKES = (
         "sigma_u**2 * J_u @ J_u.T.",
     ),
     Mistake(
+        "poses swapped",
+        lambda c: c.swapped,
+        "you paired each Jacobian with the other photo's covariance (J_A Sigma_B J_A^T): J_A is the point's "
+        "sensitivity to pose A, so it carries pose A's covariance, J_A @ Sigma_A @ J_A.T, and J_B carries Sigma_B.",
+    ),
+    Mistake(
+        "sigma_u^2 I",
+        lambda c: c.identity,
+        "your picking term is sigma_u^2 I, as if the pixel noise landed on the point unchanged: it reaches "
+        "the point through the triangulation, sigma_u**2 * J_u @ J_u.T (metres per pixel, squared).",
+    ),
+    Mistake(
+        "picking counted twice",
+        lambda c: c.picks_twice,
+        "you counted the picking twice ('two photos, so twice'): J_u already holds both photos' four "
+        "coordinates, so sigma_u**2 * J_u @ J_u.T covers both picks once.",
+    ),
+    Mistake(
+        "cross term",
+        lambda c: c.cross,
+        "you added a cross term J_A Sigma_A J_B^T: the two poses are solved from different photos and are "
+        "independent of each other and of the picks, so Sigma_X has no cross terms, only the three sums.",
+    ),
+    Mistake(
+        "cross terms",
+        lambda c: c.cross_sym,
+        "you added cross terms between the poses (J_A Sigma_A J_B^T and its transpose): the two poses are "
+        "solved from different photos and are independent, so Sigma_X is only the three J Sigma J^T terms.",
+    ),
+    Mistake(
+        "sigma_u on the poses",
+        lambda c: c.all_scaled,
+        "you multiplied the pose terms by sigma_u^2 too: Sigma_A and Sigma_B are covariances already "
+        "(metres and radians squared); sigma_u^2 belongs to the picking term only.",
+    ),
+    Mistake(
+        "diagonal of Sigma only",
+        lambda c: c.diagonal,
+        "you used only the diagonal of Sigma_A and Sigma_B: a pose's six parameters are correlated "
+        "(section 1's Mahalanobis test), so each pose term is the full J_A @ Sigma_A @ J_A.T.",
+    ),
+    Mistake(
+        "poses averaged",
+        lambda c: c.averaged,
+        "you averaged the two pose terms: each pose's error moves the point on its own, and independent "
+        "errors add in variance, so the two terms add, J_A Sigma_A J_A^T + J_B Sigma_B J_B^T.",
+    ),
+    Mistake(
+        "picking diagonal",
+        lambda c: c.picks_diagonal,
+        "you kept only the diagonal of the picking term: J_u @ J_u.T has off-diagonal entries (the four "
+        "coordinates each move the point along a slanted direction), which give the ellipsoid its tilt.",
+    ),
+    Mistake(
         "millimetres",
         lambda c: c.mm,
         "your covariance is 10^6 times too big, in mm^2: the Jacobians are in metres, so Sigma_X is "
@@ -130,6 +235,12 @@ def _diagnosis(args, got, expected) -> str:
         return (
             f"you returned a {g.shape} matrix: J.T @ Sigma @ J (or J_u.T @ J_u) is in the inputs' space; "
             "forward propagation maps into the point's, J @ Sigma @ J.T, a (3, 3) matrix."
+        )
+    if g is not None and g.shape == (3, 3) and np.isnan(g).any():
+        return (
+            "your covariance has NaN entries, square roots of negative numbers: an elementwise np.sqrt "
+            "(of Sigma_A, Sigma_B or the result) breaks the negative covariances. Sigma_X is a sum of "
+            "J Sigma J^T terms, with no square root anywhere."
         )
     if g is not None and g.shape == (3,):
         return (
@@ -154,6 +265,12 @@ def _diagnosis(args, got, expected) -> str:
     )
 
 
+def _elementwise_root(*args):
+    """A slip: an elementwise square root of the covariance (NaN where an entry is negative)."""
+    with np.errstate(invalid="ignore"):
+        return np.sqrt(point_covariance(*args))
+
+
 def _variant(name):
     return mistake_variant(_MISTAKES, name, _context)
 
@@ -174,6 +291,16 @@ register_exercise(
             (_variant("inverse covariance"), "information matrices"),
             (_variant("picking per end"), "EACH of the four"),
             (_variant("millimetres"), "mm^2"),
+            (_variant("poses swapped"), "other photo's covariance"),
+            (_variant("sigma_u^2 I"), "sigma_u^2 I"),
+            (_variant("picking counted twice"), "counted the picking twice"),
+            (_variant("cross term"), "a cross term"),
+            (_variant("cross terms"), "cross terms between the poses"),
+            (_variant("sigma_u on the poses"), "pose terms by sigma_u^2"),
+            (_variant("diagonal of Sigma only"), "only the diagonal of Sigma_A"),
+            (_variant("poses averaged"), "averaged"),
+            (_variant("picking diagonal"), "only the diagonal of the picking"),
+            (_elementwise_root, "NaN"),
             ((lambda J_A, S_A, J_B, S_B, J_u, s: J_u.T @ J_u), "inputs' space"),
             ((lambda *a: np.diag(point_covariance(*a))), "the variances alone"),
             (

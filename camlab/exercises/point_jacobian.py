@@ -268,6 +268,30 @@ _MISTAKES = (
         "columns are -[X_c - t]x = -[R X]x.",
     ),
     Mistake(
+        "dt in mm",
+        lambda c: np.hstack([c.right[:, :3], c.right[:, 3:] / 1000]),
+        "your translation columns are 1000 times too small, per millimetre: t is in metres (the board's "
+        "units), so d(u, v)/d dt is in pixels per metre; do not convert.",
+    ),
+    Mistake(
+        "dt times 1000",
+        lambda c: np.hstack([c.right[:, :3], c.right[:, 3:] * 1000]),
+        "your translation columns are 1000 times too large: t and dt are in metres (the board's units), "
+        "so d(u, v)/d dt is in pixels per metre; do not convert to or from millimetres.",
+    ),
+    Mistake(
+        "dt sign",
+        lambda c: np.hstack([c.right[:, :3], -c.right[:, 3:]]),
+        "your translation columns have the wrong sign: t <- t + dt moves X_c = R X + t by +dt, so "
+        "d X_c / d dt = +I (only the rotation block carries a minus, -[X_c - t]x).",
+    ),
+    Mistake(
+        "dt through R",
+        lambda c: np.hstack([c.right[:, :3], c.dpix @ c.R]),
+        "your translation columns carry R: t is added after the rotation, X_c = R X + t, so dt is already "
+        "in the camera's axes and d X_c / d dt = I, not R.",
+    ),
+    Mistake(
         "rows swapped",
         lambda c: c.right[::-1],
         "your rows are (v, u): row 0 is u (the column), row 1 is v (the row), as pixels are (u, v).",
@@ -354,6 +378,10 @@ register_exercise(
             (_variant("no focal length"), "normalised"),
             (_variant("rows swapped"), "(v, u)"),
             (_variant("pose inverted"), "world_from_cam"),
+            (_variant("dt in mm"), "per millimetre"),
+            (_variant("dt times 1000"), "1000 times too large"),
+            (_variant("dt sign"), "d X_c / d dt = +I"),
+            (_variant("dt through R"), "carry R"),
             ((lambda K, R, t, X: _forward_difference(K, R, t, X)), "forward difference"),
             ((lambda K, R, t, X: point_jacobian(K, R, t, X).T), "transpose"),
         ),

@@ -116,9 +116,45 @@ def length_sigma(
     )
 
 
+SIDE_LIM = ((-0.25, 1.6), (-0.1, 1.6))  # the side view's y and height limits, m: every setting fits
+
+
+def _side_view(ax) -> SimpleNamespace:
+    """The side view (board y across, height above the table up): table, board, edges, camera."""
+    ax.set(xlim=SIDE_LIM[0], ylim=SIDE_LIM[1], aspect="equal")
+    ax.set_xlabel("board y (m)", fontsize=8)
+    ax.set_ylabel("height above the table (m)", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.grid(alpha=0.3)
+    ax.set_title("side view: the camera (orange)", fontsize=9)
+    ax.axhline(0, color="0.3", lw=1)  # the table
+    ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=4, solid_capstyle="butt")  # the board
+    ax.plot(OBJECT[:, 1], [0.0, 0.0], "-", color=palette.PURPLE, lw=2)  # the edge along the slope
+    ax.plot(OBJECT_ACROSS[0, 1], 0.0, "s", color=palette.BROWN, ms=4)  # across: seen end-on
+    (rays,) = ax.plot([], [], "-", color=palette.ORANGE, lw=1)  # the photo's top and bottom rows
+    (axis,) = ax.plot([], [], "--", color="0.4", lw=1)  # the optical axis, to the board's centre
+    (eye,) = ax.plot([], [], "o", color=palette.ORANGE, ms=6)
+    return SimpleNamespace(rays=rays, axis=axis, eye=eye)
+
+
+def _side_update(side: SimpleNamespace, g: SimpleNamespace) -> None:
+    """Move the side view's camera to ``g`` (from :func:`geometry`)."""
+    C = np.array([g.eye[1], -g.eye[2]])  # (board y, height)
+    out = []
+    for v in (-0.5, SIZE[1] - 0.5):  # the photo's top and bottom rows of pixels, back-projected
+        d = g.R.T @ np.linalg.solve(K_DEMO, [K_DEMO[0, 2], v, 1.0])  # a ray in the board frame
+        s = g.eye[2] / -d[2] if d[2] > 0 else 2.0  # to the table (z = 0), or 2 m out
+        end = g.eye + s * d
+        out += [C, [end[1], -end[2]], [np.nan, np.nan]]
+    side.rays.set_data(*np.array(out).T)
+    side.axis.set_data([C[0], CENTRE[1]], [C[1], 0.0])
+    side.eye.set_data([C[0]], [C[1]])
+
+
 def _figure() -> SimpleNamespace:
-    view = FigureView(figsize=(9.0, 4.2))
-    ax_img, ax_plot = view.fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.25, 1]})
+    view = FigureView(figsize=(10.4, 4.2))
+    ax_img, ax_side, ax_plot = view.fig.subplots(1, 3, gridspec_kw={"width_ratios": [1.1, 0.8, 1]})
+    side = _side_view(ax_side)
     ax_img.set(xlim=(-0.5, SIZE[0] - 0.5), ylim=(SIZE[1] - 0.5, -0.5), aspect="equal")
     ax_img.set_xlabel("u (px)", fontsize=8)
     ax_img.set_ylabel("v (px)", fontsize=8)
@@ -156,8 +192,10 @@ def _figure() -> SimpleNamespace:
     )  # below: never on a curve
     ax_plot.set_title(" ", fontsize=9)  # the distance, set by update
     view.animate(corners, edge, edge_x, total, pose, picks, across, here, ax_plot.title)
+    view.animate(side.rays, side.axis, side.eye)
     return SimpleNamespace(
         view=view,
+        side=side,
         ax_plot=ax_plot,
         corners=corners,
         edge=edge,
@@ -219,6 +257,7 @@ def plane_error() -> Demo:
         fig.pose.set_data(TILTS, from_pose)
         fig.picks.set_data(TILTS, from_picks)
         fig.here.set_data([v["tilt"]] * 2, [1000 * now.sigma, 1000 * now_x.sigma])
+        _side_update(fig.side, geometry(v["tilt"], v["distance"]))
         fig.ax_plot.title.set_text(f"predicted error at {v['distance']:.2f} m from the board")
         state.update(
             sigma_mm=1000 * now.sigma,
