@@ -65,11 +65,12 @@ FLOORS = {
     6: ["affine_epipolar", "scenes", "stitching"],
     7: ["render", "perspective"],
     8: ["calibration"],
-    9: ["rectification", "measurement", "plotting", "exercises"],
-    10: ["fixtures"],
-    11: ["widgets", "classroom"],
-    12: ["course"],
-    13: ["cli"],
+    9: ["rectification", "measurement", "plotting"],
+    10: ["exercises"],
+    11: ["fixtures"],
+    12: ["widgets", "classroom"],
+    13: ["course"],
+    14: ["cli"],
 }
 
 
