@@ -408,10 +408,34 @@ def test_dlt_exercise_notes_a_scaling_without_centring(capsys):
         s, d = np.asarray(s, float), np.asarray(d, float)
         return dlt_exercise._dlt_with_each(s, d, dlt_exercise._scale_only, dlt_exercise._scale_only)
 
-    assert check("dlt_homography", scale_only)
-    assert "did not move its centroid" in capsys.readouterr().out
-    assert check("dlt_homography", all_exercises()["dlt_homography"].reference)
-    assert "did not move its centroid" not in capsys.readouterr().out
+    def scale_by_mean_abs(s, d):  # another recipe: 1 / mean |coordinate|, still not centred
+        s, d = np.asarray(s, float), np.asarray(d, float)
+        T = lambda p: np.diag([1 / np.mean(np.abs(p)), 1 / np.mean(np.abs(p)), 1.0])  # noqa: E731
+        return dlt_exercise._dlt_with_each(s, d, T, T)
+
+    for student in (scale_only, scale_by_mean_abs):
+        assert check("dlt_homography", student)
+        assert "without first moving its centroid to 0" in capsys.readouterr().out
+    cv2 = pytest.importorskip("cv2")
+    for centred in (
+        all_exercises()["dlt_homography"].reference,
+        lambda s, d: cv2.findHomography(np.asarray(s, float), np.asarray(d, float), 0)[0],
+    ):
+        assert check("dlt_homography", centred)
+        assert "centroid" not in capsys.readouterr().out
+
+
+def test_dlt_exercise_rejects_fixing_h33_on_an_h_with_h33_zero(capsys):
+    # least squares with h33 = 1 on raw pixels passes the far patch (columns' scale does not matter
+    # to it) but cannot represent test input 6, whose H sends the origin to infinity
+    from camlab.exercises.homographies import dlt as dlt_exercise
+
+    src, dst = dlt_exercise._dlt_cases()[5]
+    assert dlt_exercise.H_ORIGIN_AT_INFINITY[2, 2] == 0
+    assert check("dlt_homography", dlt_exercise.dlt_homography)  # the SVD's unit h: exact there
+    with pytest.raises(AssertionError, match=r"(?s)test input 6 .*you fixed h33 = 1") as failed:
+        check("dlt_homography", dlt_exercise._dlt_h33_fixed)
+    assert "282 px off" in str(failed.value)
 
 
 def test_hierarchy_demo_measures_each_groups_invariants():
