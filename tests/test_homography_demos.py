@@ -524,3 +524,27 @@ def test_apply_homography_check_names_rounding_to_whole_pixels():
         with pytest.raises(CheckFailed) as failed:
             check_apply_homography(slip)
         assert "rounded to whole pixels" in str(failed.value)
+
+
+def test_drag_sliders_stop_short_of_a_bow_tie_but_typed_corners_go_anywhere():
+    # at the sliders' ends the picture would be a smear stretched toward infinity: they stop the
+    # corner while the outline is still convex by SLIDER_MARGIN_PX; typing or a drag tear it
+    from camlab.widgets.controls import convex_margin
+    from camlab.widgets.homographies.geometry import SLIDER_MARGIN_PX
+
+    for corner, key, end in ((0, "corner_u", 290.0), (0, "corner_v", 250.0), (2, "corner_u", 10.0)):
+        d = h07.drag_homography()
+        d.set(corner=corner)
+        d.set(**{key: end})
+        corners = d.state["corners"]
+        assert d.state["torn"] is False
+        assert SLIDER_MARGIN_PX - 0.5 < convex_margin(corners) < SLIDER_MARGIN_PX + 1.0
+        # the sliders show where the corner stopped, not where they were pushed
+        assert (d.controls["corner_u"].value, d.controls["corner_v"].value) == pytest.approx(
+            tuple(corners[corner])
+        )
+    d = h07.drag_homography()
+    d.set(corners="40, 30; 250, 60; 60, 230; 230, 200")  # typed: a bow tie, torn
+    assert d.state["torn"] is True and convex_margin(d.state["corners"]) < 0
+    d.set(corner_u=45.0)  # from a bow tie the sliders move freely
+    assert d.state["corners"][0] == pytest.approx([45.0, 30.0]) and d.state["torn"] is True

@@ -25,6 +25,7 @@ from ...warp import warp_perspective
 from .._base import Demo, FigureView, build_demo, register, slider
 from ..controls import (
     connect_corner_drag,
+    convex_clamp,
     corner_keys,
     corner_text,
     format_corners,
@@ -392,6 +393,8 @@ CORNER_NAMES = (
     "bottom left",
 )  # of the source picture, SQUARE's order
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
+SLIDER_MARGIN_PX = 40.0
+"""How far short of a dent or bow tie the corner sliders stop a corner (px; typing or a drag go on)."""
 
 
 def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
@@ -703,6 +706,13 @@ def _drag_line_names(ax_s, line_pts) -> None:
         )  # black on a white halo: readable on any colour
 
 
+def _drag_keys(control, out_hw) -> dict:
+    """The corner sliders, stopped short of a dent or bow tie (typed or dragged corners go anywhere)."""
+    return corner_keys(
+        control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1, clamp=convex_clamp(SLIDER_MARGIN_PX)
+    )
+
+
 @register(
     lesson="07",
     sweep={
@@ -765,7 +775,7 @@ def drag_homography() -> Demo:
     art = _drag_artists(view, ax_s, ax_t, out_hw)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
-    keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
+    keys = _drag_keys(control, out_hw)
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:
