@@ -548,3 +548,21 @@ def test_drag_sliders_stop_short_of_a_bow_tie_but_typed_corners_go_anywhere():
     assert d.state["torn"] is True and convex_margin(d.state["corners"]) < 0
     d.set(corner_u=45.0)  # from a bow tie the sliders move freely
     assert d.state["corners"][0] == pytest.approx([45.0, 30.0]) and d.state["torn"] is True
+
+
+def test_hierarchy_demo_draws_the_four_points_whose_cross_ratio_it_prints():
+    from camlab.plotting import palette
+    from camlab.projective import cross_ratio
+
+    d = h07.transformation_hierarchy()
+    d.set(group="projective", v1=1.5, v2=1.5)
+    ax = d.figure.axes[0]
+    brown = [
+        line
+        for line in ax.lines
+        if line.get_markerfacecolor() == palette.BROWN and len(line.get_xdata()) == 4
+    ]
+    assert len(brown) == 1  # the mapped points, filled; the points before H are open
+    mapped = np.column_stack([brown[0].get_xdata(), brown[0].get_ydata()])
+    before, after, _ = d.state["measures"]["cross-ratio, diagonal"][:3]
+    assert abs(cross_ratio(mapped) - after) < 1e-9 and abs(after - before) < 1e-6
