@@ -566,3 +566,26 @@ def test_hierarchy_demo_draws_the_four_points_whose_cross_ratio_it_prints():
     mapped = np.column_stack([brown[0].get_xdata(), brown[0].get_ydata()])
     before, after, _ = d.state["measures"]["cross-ratio, diagonal"][:3]
     assert abs(cross_ratio(mapped) - after) < 1e-9 and abs(after - before) < 1e-6
+
+
+def test_parallax_demo_nests_coinciding_marks_and_draws_none_outside_the_image():
+    d = h07.plane_parallax()
+    ax = d.figure.axes[0]
+    marks = [
+        line
+        for line in ax.lines
+        if line.get_marker() in ("o", "s", "D") and line.get_ls() == "None"
+    ]
+    seen = marks[-3:]  # the three depths, in DEPTHS order, above the rings
+    default_sizes = [m.get_markersize() for m in seen]
+    d.set(move=0.0)  # a turning camera: the three depths coincide, so nest 11 / 7 / 4
+    assert [m.get_markersize() for m in seen] == [11, 7, 4]
+    d.set(move=0.6)  # points leave the image: they are counted, not drawn half-clipped
+    assert [m.get_markersize() for m in seen] == default_sizes
+    assert d.state["outside"][1.5] > 0
+    for m in marks:
+        u, v = np.asarray(m.get_xdata(), float), np.asarray(m.get_ydata(), float)
+        shown = np.isfinite(u)
+        assert np.all(
+            (u[shown] >= -0.5) & (u[shown] <= 639.5) & (v[shown] >= -0.5) & (v[shown] <= 479.5)
+        )
