@@ -408,10 +408,34 @@ def test_dlt_exercise_notes_a_scaling_without_centring(capsys):
         s, d = np.asarray(s, float), np.asarray(d, float)
         return dlt_exercise._dlt_with_each(s, d, dlt_exercise._scale_only, dlt_exercise._scale_only)
 
-    assert check("dlt_homography", scale_only)
-    assert "did not move its centroid" in capsys.readouterr().out
-    assert check("dlt_homography", all_exercises()["dlt_homography"].reference)
-    assert "did not move its centroid" not in capsys.readouterr().out
+    def scale_by_mean_abs(s, d):  # another recipe: 1 / mean |coordinate|, still not centred
+        s, d = np.asarray(s, float), np.asarray(d, float)
+        T = lambda p: np.diag([1 / np.mean(np.abs(p)), 1 / np.mean(np.abs(p)), 1.0])  # noqa: E731
+        return dlt_exercise._dlt_with_each(s, d, T, T)
+
+    for student in (scale_only, scale_by_mean_abs):
+        assert check("dlt_homography", student)
+        assert "without first moving its centroid to 0" in capsys.readouterr().out
+    cv2 = pytest.importorskip("cv2")
+    for centred in (
+        all_exercises()["dlt_homography"].reference,
+        lambda s, d: cv2.findHomography(np.asarray(s, float), np.asarray(d, float), 0)[0],
+    ):
+        assert check("dlt_homography", centred)
+        assert "centroid" not in capsys.readouterr().out
+
+
+def test_dlt_exercise_rejects_fixing_h33_on_an_h_with_h33_zero(capsys):
+    # least squares with h33 = 1 on raw pixels passes the far patch (columns' scale does not matter
+    # to it) but cannot represent test input 6, whose H sends the origin to infinity
+    from camlab.exercises.homographies import dlt as dlt_exercise
+
+    src, dst = dlt_exercise._dlt_cases()[5]
+    assert dlt_exercise.H_ORIGIN_AT_INFINITY[2, 2] == 0
+    assert check("dlt_homography", dlt_exercise.dlt_homography)  # the SVD's unit h: exact there
+    with pytest.raises(AssertionError, match=r"(?s)test input 6 .*you fixed h33 = 1") as failed:
+        check("dlt_homography", dlt_exercise._dlt_h33_fixed)
+    assert "282 px off" in str(failed.value)
 
 
 def test_hierarchy_demo_measures_each_groups_invariants():
@@ -500,3 +524,68 @@ def test_apply_homography_check_names_rounding_to_whole_pixels():
         with pytest.raises(CheckFailed) as failed:
             check_apply_homography(slip)
         assert "rounded to whole pixels" in str(failed.value)
+
+
+def test_drag_sliders_stop_short_of_a_bow_tie_but_typed_corners_go_anywhere():
+    # at the sliders' ends the picture would be a smear stretched toward infinity: they stop the
+    # corner while the outline is still convex by SLIDER_MARGIN_PX; typing or a drag tear it
+    from camlab.widgets.controls import convex_margin
+    from camlab.widgets.homographies.geometry import SLIDER_MARGIN_PX
+
+    for corner, key, end in ((0, "corner_u", 290.0), (0, "corner_v", 250.0), (2, "corner_u", 10.0)):
+        d = h07.drag_homography()
+        d.set(corner=corner)
+        d.set(**{key: end})
+        corners = d.state["corners"]
+        assert d.state["torn"] is False
+        assert SLIDER_MARGIN_PX - 0.5 < convex_margin(corners) < SLIDER_MARGIN_PX + 1.0
+        # the sliders show where the corner stopped, not where they were pushed
+        assert (d.controls["corner_u"].value, d.controls["corner_v"].value) == pytest.approx(
+            tuple(corners[corner])
+        )
+    d = h07.drag_homography()
+    d.set(corners="40, 30; 250, 60; 60, 230; 230, 200")  # typed: a bow tie, torn
+    assert d.state["torn"] is True and convex_margin(d.state["corners"]) < 0
+    d.set(corner_u=45.0)  # from a bow tie the sliders move freely
+    assert d.state["corners"][0] == pytest.approx([45.0, 30.0]) and d.state["torn"] is True
+
+
+def test_hierarchy_demo_draws_the_four_points_whose_cross_ratio_it_prints():
+    from camlab.plotting import palette
+    from camlab.projective import cross_ratio
+
+    d = h07.transformation_hierarchy()
+    d.set(group="projective", v1=1.5, v2=1.5)
+    ax = d.figure.axes[0]
+    brown = [
+        line
+        for line in ax.lines
+        if line.get_markerfacecolor() == palette.BROWN and len(line.get_xdata()) == 4
+    ]
+    assert len(brown) == 1  # the mapped points, filled; the points before H are open
+    mapped = np.column_stack([brown[0].get_xdata(), brown[0].get_ydata()])
+    before, after, _ = d.state["measures"]["cross-ratio, diagonal"][:3]
+    assert abs(cross_ratio(mapped) - after) < 1e-9 and abs(after - before) < 1e-6
+
+
+def test_parallax_demo_nests_coinciding_marks_and_draws_none_outside_the_image():
+    d = h07.plane_parallax()
+    ax = d.figure.axes[0]
+    marks = [
+        line
+        for line in ax.lines
+        if line.get_marker() in ("o", "s", "D") and line.get_ls() == "None"
+    ]
+    seen = marks[-3:]  # the three depths, in DEPTHS order, above the rings
+    default_sizes = [m.get_markersize() for m in seen]
+    d.set(move=0.0)  # a turning camera: the three depths coincide, so nest 11 / 7 / 4
+    assert [m.get_markersize() for m in seen] == [11, 7, 4]
+    d.set(move=0.6)  # points leave the image: they are counted, not drawn half-clipped
+    assert [m.get_markersize() for m in seen] == default_sizes
+    assert d.state["outside"][1.5] > 0
+    for m in marks:
+        u, v = np.asarray(m.get_xdata(), float), np.asarray(m.get_ydata(), float)
+        shown = np.isfinite(u)
+        assert np.all(
+            (u[shown] >= -0.5) & (u[shown] <= 639.5) & (v[shown] >= -0.5) & (v[shown] <= 479.5)
+        )

@@ -364,7 +364,8 @@ def _minimal_solve(sn: np.ndarray, dn: np.ndarray) -> tuple[np.ndarray, np.ndarr
     """Solve B minimal 4-point DLTs at once; returns (B, 3, 3) H and a (B,) validity mask."""
     # Reject samples with 3 collinear points in either image, and samples whose triangle
     # orientations flip inconsistently (no homography that keeps all 4 points in front
-    # can map them so; H&Z and OpenCV's isMinimalSetConsistent).
+    # can map them so; H&Z; OpenCV's HomographyEstimatorCallback::checkSubset, after
+    # Marquez-Neila et al., J. Real-Time Image Processing 2016).
     ds = _collinear_triples(sn)
     dd = _collinear_triples(dn)
     ok = (np.abs(ds).min(axis=1) > 1e-6) & (np.abs(dd).min(axis=1) > 1e-6)

@@ -275,7 +275,11 @@ def format_corners(pts: np.ndarray) -> str:
 
 
 def corner_keys(
-    control: W.Text, names: Sequence[str], u_max: float, v_max: float
+    control: W.Text,
+    names: Sequence[str],
+    u_max: float,
+    v_max: float,
+    clamp: Callable[[np.ndarray, int, np.ndarray], np.ndarray] | None = None,
 ) -> dict[str, W.ValueWidget]:
     """Keyboard twins of dragging a corner: a dropdown picks the corner, two sliders move it.
 
@@ -294,6 +298,10 @@ def corner_keys(
         The corners' names, in the order of the text's corners.
     u_max, v_max : float
         The sliders' upper ends, pixels (usually the image's width and height).
+    clamp : callable, optional
+        ``clamp(corners, index, wanted) -> (u, v)``: where a slider may put corner ``index``
+        when it asks for ``wanted`` (e.g. :func:`convex_clamp`); the sliders then snap to it.
+        None (default) puts it where asked.
 
     Returns
     -------
@@ -328,8 +336,11 @@ def corner_keys(
             pts = parse_corners(control.value)
         except ValueError:
             return
-        pts[pick.value] = u.value, v.value
-        control.value = format_corners(pts)
+        wanted = np.array([u.value, v.value], dtype=float)
+        pts[pick.value] = wanted if clamp is None else clamp(pts, pick.value, wanted)
+        before, control.value = control.value, format_corners(pts)
+        if control.value == before or not np.allclose(pts[pick.value], wanted):
+            show_corner()  # clamped: the sliders show where the corner stays
 
     for widget, handler in (
         (control, show_corner),
@@ -340,6 +351,75 @@ def corner_keys(
         widget.observe(handler, names="value")
     show_corner()
     return {"corner": pick, "corner_u": u, "corner_v": v}
+
+
+def convex_margin(corners: np.ndarray) -> float:
+    """The smallest distance (px) of a corner from the line of a side it is not on; < 0 if not convex.
+
+    A quadrilateral is convex when, for each side, the two other corners lie on its inner side;
+    this is the least of those eight signed distances (positive inside).
+
+    Parameters
+    ----------
+    corners : (4, 2) array_like
+        The outline's corners in order (either way round), pixels.
+
+    Returns
+    -------
+    float
+        The least distance, pixels: positive for a convex outline, 0 or less for a dent or a
+        bow tie, ``-inf`` for one with no area or a repeated corner.
+    """
+    q = np.asarray(corners, dtype=float)
+    e = np.roll(q, -1, axis=0) - q  # side k runs from corner k to corner k + 1
+    area = np.sum(q[:, 0] * np.roll(q[:, 1], -1) - np.roll(q[:, 0], -1) * q[:, 1])
+    lengths = np.linalg.norm(e, axis=1)
+    if area == 0 or not np.all(lengths > 0):
+        return -np.inf
+    return float(
+        min(
+            np.sign(area) * np.cross(e[k], q[(k + j) % 4] - q[k]) / lengths[k]
+            for k in range(4)
+            for j in (2, 3)
+        )
+    )
+
+
+def convex_clamp(margin_px: float) -> Callable[[np.ndarray, int, np.ndarray], np.ndarray]:
+    """A ``clamp`` for :func:`corner_keys`: a slider stops a corner ``margin_px`` short of a dent or bow tie.
+
+    From a convex outline (:func:`convex_margin` at least ``margin_px``) the corner moves toward
+    where the slider asks as far as the outline stays so; from any other outline (typed or
+    dragged) it moves freely.
+
+    Parameters
+    ----------
+    margin_px : float
+        The least :func:`convex_margin` a slider may leave, pixels.
+
+    Returns
+    -------
+    callable
+        ``clamp(corners, index, wanted) -> (2,) ndarray``: where corner ``index`` goes.
+    """
+
+    def clamp(corners: np.ndarray, index: int, wanted: np.ndarray) -> np.ndarray:
+        q = np.array(corners, dtype=float)
+        start = q[index].copy()
+
+        def ok(t: float) -> bool:
+            q[index] = start + t * (wanted - start)
+            return convex_margin(q) >= margin_px
+
+        if not ok(0.0) or ok(1.0):
+            return np.asarray(wanted, dtype=float)
+        low, high = 0.0, 1.0  # ok at low, not at high
+        for _ in range(30):
+            mid = 0.5 * (low + high)
+            low, high = (mid, high) if ok(mid) else (low, mid)
+        return np.round(start + low * (wanted - start), 1)
+
+    return clamp
 
 
 def connect_corner_drag(

@@ -1,7 +1,8 @@
 """Exercises for lesson 07, homographies.
 
 Applying a homography (:mod:`.apply`), the normalised DLT (:mod:`.dlt`), the number of RANSAC
-samples (:mod:`.ransac`) and the inverse warp (:mod:`.inverse_warp`).
+samples (:mod:`.ransac`), the inverse warp (:mod:`.inverse_warp`) and the homography of a plane
+(:mod:`.plane`).
 """
 
 from __future__ import annotations
@@ -12,7 +13,8 @@ from . import dlt
 from . import apply
 from . import ransac
 from . import inverse_warp
+from . import plane
 
 # isort: on
 
-__all__ = ["apply", "dlt", "inverse_warp", "ransac"]
+__all__ = ["apply", "dlt", "inverse_warp", "plane", "ransac"]

@@ -45,17 +45,24 @@ def _dlt_cases():
     quad = np.array([[100.0, 80.0], [520.0, 60.0], [560.0, 400.0], [90.0, 430.0]])
     pts = rng.uniform([0, 0], [640, 480], (8, 2))
     far = rng.uniform([2000, 2000], [2600, 2400], (30, 2))
+    near = rng.uniform([100, 50], [600, 450], (8, 2))
     return [
         (square, 2.0 * square @ turn.T + [3.0, 1.0]),  # a similarity (turned: H_n is not I)
         (square * 300, quad),  # the unit-square trick, in pixels
         (quad, map_points(H1, quad)),
         (pts, map_points(H2, pts)),  # more than 4 pairs (noise free)
         (far, map_points(H_FAR, far) + rng.normal(0, 1.0, far.shape)),  # noisy, far from the origin
+        (near, map_points(H_ORIGIN_AT_INFINITY, near)),  # h33 = 0: exact, but no h33 = 1 form
     ]
 
 
+H_ORIGIN_AT_INFINITY = np.array([[0.0, 0.0, 500.0], [0.0, 1.0, 0.0], [0.002, 0.0, 0.0]])
+"""The true H of test input 6: h33 = 0, so it sends the pixel origin (0, 0) to infinity (det -1).
+A DLT that fixes h33 = 1 cannot represent it (least squares on raw pixels lands tens of pixels off)."""
+
+
 FAR_DRAWS = 12
-"""How many fresh noise draws of the far patch the follow-up judges (after the five test inputs)."""
+"""How many fresh noise draws of the far patch the follow-up judges (after the six test inputs)."""
 FAR_MEDIAN_PX, FAR_WORST_PX = 2.5, 8.0
 """The follow-up's bars: the median over the draws, and the worst draw. A normalised DLT (any of
 the valid forms above) is 1.4-1.5 px off at the median over 200 draws and under 5.3 px on every one;
@@ -242,14 +249,38 @@ def _one_set_only(run) -> str:
                     f"other set's raw pixels (thousands) with entries of order 1; Hartley's recipe gives "
                     f"each set its own T (H&Z §4.4.4)."
                 )
-    if same_up_to_scale(g, _dlt_with_each(src, dst, _scale_only, _scale_only), rtol=1e-6):
+    moved = _origin_dependence(run, src, dst, g)
+    if moved > 1e-6:
         return (
-            "Note: you scaled each set but did not move its centroid to the origin. That passes on this "
-            f"patch (a centred DLT is {_reference_median():.2f} px off at the median), but without centring "
-            "the answer still depends on where the pixel origin lies, which normalisation exists to remove "
-            "(H&Z §4.4.2): step 1 moves each centroid to 0, then scales."
+            f"Note: your H depends on where the pixel origin lies. Shifting both point sets by "
+            f"({_SHIFT[0]:g}, {_SHIFT[1]:g}) px, solving, and shifting the answer back moves the patch's "
+            f"image by {moved:.2g} px; a DLT that centres each set moves it by about 1e-12 px (H&Z §4.4.2's "
+            f"invariance). Most likely you scaled each set without first moving its centroid to 0. That "
+            f"passes on this patch, but step 1 is: centroid to 0, then scale."
         )
     return ""
+
+
+_SHIFT = np.array([-2300.0, -2200.0])
+"""The shift of both point sets that the centring note tries: it brings the far patch near the origin."""
+
+
+def _origin_dependence(run, src, dst, g) -> float:
+    """How far g's image of the far patch moves when both sets are shifted by _SHIFT, then shifted back.
+
+    0 (to rounding) for any DLT that centres each set, and for OpenCV's refined fit this returns 0
+    too: its iterative refinement stops at a tolerance, so it is not exactly invariant, but it centres.
+    """
+    try:
+        import cv2
+
+        if _patch_distance(g, cv2.findHomography(src, dst, 0)[0]) < 1e-6:
+            return 0.0
+    except ImportError:  # pragma: no cover - OpenCV is a dependency of the course
+        pass
+    T = np.array([[1.0, 0.0, _SHIFT[0]], [0.0, 1.0, _SHIFT[1]], [0.0, 0.0, 1.0]])
+    shifted = np.asarray(run(src + _SHIFT, dst + _SHIFT), dtype=float)
+    return _patch_distance(g, np.linalg.inv(T) @ shifted @ T)
 
 
 def _scale_only(p):
@@ -314,6 +345,9 @@ def _dlt_diagnosis(args, got, expected) -> str:
         return problem + ". Return H as a (3, 3) array: h.reshape(3, 3)."
     src, dst = args
     g = np.asarray(got, dtype=float)
+    cause = _h33_slip(g, src, dst, expected)
+    if cause:
+        return cause
     if same_up_to_scale(g, np.linalg.inv(expected), rtol=1e-5):
         return (
             "your H maps dst to src: it is the inverse. Did you swap src and dst when building A?"
@@ -349,6 +383,29 @@ def _dlt_diagnosis(args, got, expected) -> str:
         f"Build two rows of x' x Hx = 0 per pair, (0, -x^T, v' x^T) and (x^T, 0, -u' x^T), take the right "
         f"singular vector with the smallest singular value (the last row of Vt) and reshape it row by row."
     )
+
+
+def _h33_slip(g, src, dst, expected) -> str:
+    """Name an H forced to h33 = 1, or divided by h33, on the input whose true h33 is 0 ("" otherwise)."""
+    e = np.asarray(expected, dtype=float)
+    if abs(e[2, 2]) > 1e-9 * np.linalg.norm(e):
+        return ""
+    if not np.isfinite(g).all() or abs(g[2, 2]) < 1e-6 * np.linalg.norm(g):
+        return ""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        off = np.nanmax(np.linalg.norm(map_points(g, src) - dst, axis=1))
+    return (
+        f"you fixed h33 = 1 (least squares for the other 8 entries, section 5's aside). "
+        f"That assumes H does not send the pixel origin (0, 0) to infinity, but this H does: its true "
+        f"h33 is 0, so no H with h33 = 1 fits and yours lands up to {off:.3g} px off these exact pairs. "
+        f"Solve A h = 0 for the unit-norm h by SVD (the last row of Vt), which assumes nothing about h33."
+    )
+
+
+def _dlt_h33_fixed(src, dst):
+    """The DLT with h33 = 1 fixed, by least squares on the raw pixels (a tutorial's form: no SVD)."""
+    A = _dlt_rows(src, dst)
+    return np.append(np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)[0], 1.0).reshape(3, 3)
 
 
 def _half_pixel(g, src, dst) -> str:
@@ -588,7 +645,7 @@ def dlt_homography(src, dst):
     Returns
     -------
     (3, 3) ndarray
-        H, scaled so that H[2, 2] = 1.
+        H, at an arbitrary scale (not divided by H[2, 2], which may be 0).
 
     References
     ----------
@@ -609,8 +666,7 @@ def dlt_homography(src, dst):
         rows.append(np.concatenate([np.zeros(3), -x, v * x]))
         rows.append(np.concatenate([x, np.zeros(3), -u * x]))
     h = np.linalg.svd(np.array(rows))[2][-1]  # smallest singular value's right vector
-    H = np.linalg.inv(T_dst) @ h.reshape(3, 3) @ T_src
-    return H / H[2, 2]
+    return np.linalg.inv(T_dst) @ h.reshape(3, 3) @ T_src  # any scale: h33 may be 0
 
 
 register_exercise(
@@ -669,6 +725,7 @@ register_exercise(
             ),
             (lambda s, d: hg.estimate_homography(np.asarray(s) + 0.5, d), "half-pixel offset"),
             (lambda s, d: hg.estimate_homography(s, d).tolist(), "you returned a list"),
+            (_dlt_h33_fixed, "you fixed h33 = 1"),
             (_dlt_points_times_t, "with X @ T, but"),
             (
                 lambda s, d: hg.estimate_homography(np.asarray(s)[:4], np.asarray(d)[:4]),

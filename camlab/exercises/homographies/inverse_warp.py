@@ -148,6 +148,19 @@ def _indexed_u_v_caught(image, H, out_shape):
     return np.where(read, image[np.clip(iu, 0, h - 1), np.clip(iv, 0, w - 1)], 0.0)
 
 
+def _warp_source_one_based(image, H, out_shape):
+    """A loop that counts source pixels from 1: image[v - 1, u - 1] for 1 <= u <= width (a slip)."""
+    Hinv = np.linalg.inv(np.asarray(H, dtype=float))
+    out = np.zeros(out_shape)
+    for v_out in range(out_shape[0]):
+        for u_out in range(out_shape[1]):
+            x, y, w = Hinv @ [u_out, v_out, 1.0]
+            u, v = int(np.rint(x / w)), int(np.rint(y / w))
+            if 1 <= u <= image.shape[1] and 1 <= v <= image.shape[0]:
+                out[v_out, u_out] = image[v - 1, u - 1]
+    return out
+
+
 def _same_picture(got, expected) -> bool:
     """Same shape, and all but :data:`_MISMATCH_ALLOWED` of the pixels equal (within float32 rounding)."""
     try:
@@ -183,8 +196,10 @@ _WARP_MISTAKES = (
     Mistake(
         "truncated",
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=np.floor),
-        "you rounded the source point down (np.floor): that takes the pixel to its upper left, half a "
-        "pixel off on average. The nearest pixel centre is the rounded one: np.rint(u), np.rint(v).",
+        "you rounded the source point down: np.floor(u), or np.rint(u - 0.5), which is the same almost "
+        "everywhere (a half-pixel offset, as if pixel centres sat at half-integers). Either way you read "
+        "the pixel to the upper left, half a pixel off on average. The course puts pixel centres at "
+        "integers, so the nearest pixel is np.rint(u), np.rint(v), with no offset.",
     ),
     Mistake(
         "int() truncation",
@@ -203,9 +218,10 @@ _WARP_MISTAKES = (
     Mistake(
         "image[u, v], IndexError caught",
         lambda c: _indexed_u_v_caught(c.image, c.H, c.shape),
-        "you read image[u, v] (column first) and caught the IndexError it raised: numpy images are "
-        "image[row v, column u], so read image[iv, iu], test 0 <= iu < width and 0 <= iv < height "
-        "(width = image.shape[1]) first, and drop the try/except, which hid the slip.",
+        "you read image[u, v] (column first), with a test that kept the index inside the array: numpy "
+        "images are image[row v, column u], so read image[iv, iu] and test 0 <= iu < width and "
+        "0 <= iv < height (width = image.shape[1]). If you caught an IndexError, drop the try/except: "
+        "it hid the slip.",
     ),
     Mistake(
         "no lower bound",
@@ -237,13 +253,34 @@ _WARP_MISTAKES = (
     Mistake(
         "rounded up",
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=np.ceil),
-        "you rounded the source point up (np.ceil): the nearest pixel centre is the *rounded* one, np.rint.",
+        "you rounded the source point up: np.ceil(u), or np.rint(u + 0.5), which is the same almost "
+        "everywhere (a half-pixel offset, as if pixel centres sat at half-integers). The course puts "
+        "pixel centres at integers, so the nearest pixel is np.rint(u), np.rint(v), with no offset.",
+    ),
+    *(
+        Mistake(
+            f"half-pixel offset {sign}",
+            lambda c, sign=sign: _warp(
+                c.image, np.linalg.inv(c.H), c.shape, shift=float(f"{sign}0.5")
+            ),
+            f"you mapped (u' {sign} 0.5, v' {sign} 0.5): a half-pixel offset. The course puts pixel centres "
+            "at integers, so output pixel (u', v') is the point (u', v') itself.",
+        )
+        for sign in "+-"
     ),
     Mistake(
-        "half-pixel offset",
-        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, shift=0.5),
-        "you mapped (u' + 0.5, v' + 0.5): a half-pixel offset. The course puts pixel centres at integers, so "
-        "output pixel (u', v') is the point (u', v') itself.",
+        "source counted from 1",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, rounding=lambda x: np.rint(x) - 1),
+        "you counted the source pixels from 1 (as MATLAB does): you read image[iv - 1, iu - 1] for "
+        "1 <= iu <= width, so every output pixel reads the pixel one up and one left of the right one. "
+        "numpy and the course count from 0: the pixel centred at the point (u, v) is image[v, u].",
+    ),
+    Mistake(
+        "output counted from 1",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, shift=1.0),
+        "you counted the output pixels from 1 (as MATLAB does): output pixel out[v', u'] was mapped from "
+        "the point (u' + 1, v' + 1), so the picture sits one pixel up and left. numpy and the course count "
+        "from 0: out[v', u'] is the point (u', v') itself, u' in range(width).",
     ),
     Mistake(
         "pixel corners",
@@ -415,6 +452,21 @@ register_exercise(
                 "rounded the source point down",
             ),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=0.5), "half-pixel offset"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=-0.5), "u' - 0.5"),
+            (
+                lambda im, H, s: _warp(
+                    im, np.linalg.inv(H), s, rounding=lambda x: np.rint(x + 0.5)
+                ),
+                "np.rint(u + 0.5)",
+            ),
+            (
+                lambda im, H, s: _warp(
+                    im, np.linalg.inv(H), s, rounding=lambda x: np.rint(x - 0.5)
+                ),
+                "np.rint(u - 0.5)",
+            ),
+            (_warp_source_one_based, "source pixels from 1"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, shift=1.0), "output pixels from 1"),
             (
                 lambda im, H, s: _warp(
                     im, np.linalg.inv(H), s, rounding=lambda x: np.trunc(x + 0.5)
@@ -428,7 +480,7 @@ register_exercise(
             (lambda im, H, s: _reference(im, H, s).T, "(rows, columns)"),
             (lambda im, H, s: _reference(im, H, s).tolist(), "list"),
             (_indexed_image_u_v, "image[v, u]"),
-            (_indexed_u_v_caught, "hid the slip"),
+            (_indexed_u_v_caught, "If you caught an IndexError"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.trunc), "toward zero"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, swap=True), "image[row v, column u]"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, lower=False), "negative index"),

@@ -74,6 +74,13 @@ _SAMPLES_MISTAKES = (
         "k = log(1 - p) / log(1 - q^4).",
     ),
     Mistake(
+        "q in per cent",
+        lambda s: _is_any(s.g, s.ways(_k(np.log(1 - s.p), np.log(1 - (s.q / 100) ** 4)))),
+        "you divided the inlier ratio by 100, as if it came in per cent: it is already a fraction in "
+        "(0, 1) (0.6 means 60 % inliers), so (q / 100)^4 makes a clean sample millions of times too "
+        "rare. Use it as it is: k = log(1 - p) / log(1 - q^4).",
+    ),
+    Mistake(
         "expected number of trials",
         lambda s: _is_any(s.g, s.ways(1 / s.q**4)) and not _is_any(s.g, {np.ceil(s.exact)}),
         "you returned 1 / q^4, the *expected* number of samples until the first clean one. The "
@@ -326,6 +333,10 @@ register_exercise(
         success_note=_samples_note,
         wrong_variants=(
             (lambda p, q: np.log(1 - p) / np.log(1 - q**4), "a fraction of a sample"),
+            (
+                lambda p, q: int(np.ceil(np.log(1 - p) / np.log(1 - (q / 100) ** 4))),
+                "divided the inlier ratio by 100",
+            ),
             (lambda p, q: int(np.log(1 - p) / np.log(1 - q**4)) + 1, "int(k) + 1"),
             (
                 lambda p, q: next(k for k in range(10**6) if (1 - q**4) ** k < 1 - p),

@@ -25,6 +25,7 @@ from ...warp import warp_perspective
 from .._base import Demo, FigureView, build_demo, register, slider
 from ..controls import (
     connect_corner_drag,
+    convex_clamp,
     corner_keys,
     corner_text,
     format_corners,
@@ -99,6 +100,15 @@ def _hierarchy_texts(group, kind, Hg, H, picture_shape, canvas_hw):
     return facts, readout
 
 
+def _diagonal_points(picture_shape) -> np.ndarray:
+    """The four points whose cross-ratio the hierarchy demo measures (on the picture's diagonal).
+
+    They lie 0, 1/4, 1/2 and 1 of the way from its top-left pixel centre to its bottom-right one.
+    """
+    ph, pw = picture_shape[:2]
+    return np.array([[0.0], [0.25], [0.5], [1.0]]) * [pw - 1.0, ph - 1.0]
+
+
 def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     """What the hierarchy demo measures on the picture's outline, before and after H.
 
@@ -140,7 +150,7 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
         )
         return float(np.degrees(np.arctan2(abs(d1[0] * d2[1] - d1[1] * d2[0]), abs(d1 @ d2))))
 
-    diagonal = tl + np.array([[0.0], [0.25], [0.5], [1.0]]) * (br - tl)
+    diagonal = _diagonal_points(picture_shape)
     # (before, after, tolerance, absolute?): angles within 0.1° absolutely, lengths and ratios
     # within 0.1 % of their value, the cross-ratio within 1e-6 of its value
     rows = {
@@ -171,6 +181,31 @@ def _measures_text(measures: dict) -> str:
     return "\n".join(lines)
 
 
+def _diagonal_artists(view, ax, before):
+    """The four diagonal points of the cross-ratio: before H (open, static) and mapped (filled, animated)."""
+    ax.plot(
+        *before.T,
+        "o",
+        mfc="white",
+        mec=palette.BROWN,
+        mew=1.5,
+        ms=6,
+        zorder=4,
+    )
+    return view.animate(
+        ax.plot(
+            [],
+            [],
+            "o",
+            color=palette.BROWN,
+            mec="white",
+            ms=6,
+            zorder=5,
+            label="cross-ratio points\n(open: before H)",
+        )[0]
+    )
+
+
 def _hierarchy_figure(pic, C, P, canvas_hw):
     """The hierarchy demo's figure: its view, the animated artists and the grid lines to map.
 
@@ -186,7 +221,7 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
     Returns
     -------
     SimpleNamespace
-        ``view``, ``ax``, ``im``, ``grid_art``, ``horizon_art``, ``facts``, ``warning``,
+        ``view``, ``ax``, ``im``, ``grid_art``, ``horizon_art``, ``diagonal_art``, ``facts``, ``warning``,
         ``grid_lines``, ``xlim``, ``ylim``.
     """
     ph, pw = pic.shape[:2]
@@ -238,20 +273,21 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
             "--",
             color=palette.PURPLE,
             lw=2,
-            label="vanishing line (image of\nl∞), drawn when it\ncrosses the canvas",
+            label="vanishing line (image\nof l∞), when in view",
         )[0]
     )
+    diagonal_art = _diagonal_artists(view, ax, map_points(outline0, _diagonal_points(pic.shape)))
     ax.set_title(
         "the picture mapped by H about its centre (group, dof, invariants at the right)",
         fontsize=10,
         pad=10,  # clear of the top tick label "0", which stands half its height above the axes
     )
     # beside the axes: over the warped picture the legend would need a redraw per update
-    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=9)
     # The group, its dof and what it keeps, in the figure itself (a static page has no readout).
     facts = view.animate(
         ax.text(
-            1.03, 0.72, "", transform=ax.transAxes, ha="left", va="top", fontsize=8, linespacing=1.3
+            1.03, 0.6, "", transform=ax.transAxes, ha="left", va="top", fontsize=9, linespacing=1.3
         )
     )
     warning = warning_note(
@@ -263,6 +299,7 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
         im=im,
         grid_art=grid_art,
         horizon_art=horizon_art,
+        diagonal_art=diagonal_art,
         facts=facts,
         warning=warning,
         grid_lines=grid_lines,
@@ -340,6 +377,8 @@ def transformation_hierarchy() -> Demo:
         pieces = [np.vstack([map_polyline(H, line), [[np.nan, np.nan]]]) for line in grid_lines]
         m = np.vstack(pieces)
         grid_art.set_data(m[:, 0], m[:, 1])
+        # the four points of the cross-ratio, mapped
+        fig.diagonal_art.set_data(*map_points(H, _diagonal_points(pic.shape)).T)
         # l' = H^-T l_inf: where parallel lines of the picture meet (outside the view for affine H)
         vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), fig.xlim, fig.ylim)
         horizon_art.set_data(vanishing[:, 0], vanishing[:, 1])
@@ -392,6 +431,8 @@ CORNER_NAMES = (
     "bottom left",
 )  # of the source picture, SQUARE's order
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
+SLIDER_MARGIN_PX = 40.0
+"""How far short of a dent or bow tie the corner sliders stop a corner (px; typing or a drag go on)."""
 
 
 def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
@@ -703,6 +744,13 @@ def _drag_line_names(ax_s, line_pts) -> None:
         )  # black on a white halo: readable on any colour
 
 
+def _drag_keys(control, out_hw) -> dict:
+    """The corner sliders, stopped short of a dent or bow tie (typed or dragged corners go anywhere)."""
+    return corner_keys(
+        control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1, clamp=convex_clamp(SLIDER_MARGIN_PX)
+    )
+
+
 @register(
     lesson="07",
     sweep={
@@ -765,7 +813,7 @@ def drag_homography() -> Demo:
     art = _drag_artists(view, ax_s, ax_t, out_hw)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
-    keys = corner_keys(control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1)
+    keys = _drag_keys(control, out_hw)
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:

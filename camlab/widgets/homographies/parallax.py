@@ -19,6 +19,8 @@ DEPTHS = (1.5, 3.0, 6.0)
 """The depths (metres, along camera 1's axis) of the three points on each ray."""
 # One look per depth, as in section 9's static figure: magenta and olive appear nowhere else.
 _LOOKS = (("o", palette.MAGENTA, 9), ("s", "k", 5.5), ("D", palette.OLIVE, 6))
+_NESTED = dict(zip(DEPTHS, (11, 7, 4), strict=True))
+"""Marker sizes when the three depths coincide (no parallax): nested, so all three stay visible."""
 
 
 def _rays() -> np.ndarray:
@@ -42,6 +44,11 @@ def _inside(x: np.ndarray) -> np.ndarray:
     """True for pixels inside camera 2's 640 x 480 image (False for NaN, behind the camera)."""
     with np.errstate(invalid="ignore"):
         return np.all((x >= -0.5) & (x <= [639.5, 479.5]), axis=1)
+
+
+def _in_view(x: np.ndarray) -> np.ndarray:
+    """The pixels inside camera 2's image; NaN (not drawn) for the others, which the readout counts."""
+    return np.where(_inside(x)[:, None], x, np.nan)
 
 
 def _segments(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -113,7 +120,7 @@ def plane_parallax() -> Demo:
     ax.set(
         xlim=(-30, 670), ylim=(505, -25), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
     )
-    ax.set_title("camera 2's 640 x 480 image (dotted)", fontsize=10)
+    ax.set_title("camera 2's 640 x 480 image (dotted); marks outside it are not drawn", fontsize=10)
     rings = view.animate(
         ax.plot(
             [],
@@ -152,14 +159,16 @@ def plane_parallax() -> Demo:
         t = v["move"] * np.array([1.0, -0.25, 0.125])
         H = hg.plane_homography(K_PARALLAX, R, t, np.array([0.0, 0.0, -1.0]), v["plane"])
         predicted = map_points(H, x_first)  # where H sends camera 1's pixel of each ray
-        rings.set_data(predicted[:, 0], predicted[:, 1])
+        rings.set_data(*_in_view(predicted).T)
         wheres = {
             Z: _project(rays * Z, R, t) for Z in DEPTHS
         }  # where camera 2 really sees each point
-        for Z, gap_art, seen_art in zip(DEPTHS, gaps, seen, strict=True):
-            gap_art.set_data(*_segments(predicted, wheres[Z]).T)
-            seen_art.set_data(wheres[Z][:, 0], wheres[Z][:, 1])
         parallax, hidden, common = _median_parallax(predicted, wheres)
+        nested = max(parallax.values(), default=0.0) < 1.0  # the three marks coincide: nest them
+        for Z, gap_art, seen_art, look in zip(DEPTHS, gaps, seen, _LOOKS, strict=True):
+            gap_art.set_data(*_segments(_in_view(predicted), _in_view(wheres[Z])).T)
+            seen_art.set_data(*_in_view(wheres[Z]).T)
+            seen_art.set_markersize(_NESTED[Z] if nested else look[2])
         state.update(H=H, parallax=parallax, outside=hidden, common=common)
         over = (
             f"over the {common} rays in view at all three depths"
