@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import html
+
 import ipywidgets as W
 import numpy as np
+from ipywidgets import HTML
 from matplotlib.colors import to_hex, to_rgba
 from matplotlib.markers import MarkerStyle
 from matplotlib.path import Path
@@ -472,6 +475,9 @@ def stack_check() -> Demo:
         readout.set_text(
             numbers + path_note(angle, s)
         )  # at 0°, scale 1 the moved house hides the original
+        text.value = (
+            f"roof tip (orange dot) at {numbers}{path_note(angle, s)}"  # as text beside the sliders
+        )
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
         # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no dart drawn)
         # turns: the way each panel's drawn arc turns on screen (screen_turn), measured, not read off the angle
@@ -490,7 +496,10 @@ def stack_check() -> Demo:
         "angle": slider(DEFAULT_ANGLE, -180.0, 180.0, 1.0, "angle θ (°)", readout_format=".0f"),
         "scale": slider(1.0, 0.3, 2.0, 0.05, "scale s"),
     }
-    demo = build_demo("stack_check", controls, view, update, title="Is everything working?")
+    text = HTML()  # the readout beside the sliders too: selectable, and read by a screen reader
+    demo = build_demo(
+        "stack_check", controls, view, update, title="Is everything working?", extra=[text]
+    )
     view.publish(demo, _browser_scene(panels, readout, view.fig.dpi))  # the browser draws the moves
     return demo
 
@@ -752,6 +761,7 @@ def pixel_explorer() -> Demo:
     img = 10 * rows + cols
     view = FigureView(figsize=(8.2, 3.9))
     ax, square, swapped, centre, corner, readout = _explorer_figure(view, img)
+    text = HTML()  # the readout beside the sliders too, as text a screen reader reads
 
     def update(values: dict, state: dict) -> None:
         u, v = int(values["u"]), int(values["v"])
@@ -763,6 +773,9 @@ def pixel_explorer() -> Demo:
         if inside:
             swapped.set_xy((v - 0.5, u - 0.5))  # row u, column v: the pixel (v, u)
         readout.set_text(_explorer_text(u, v, img))
+        text.value = (
+            f"<pre>{html.escape(readout.get_text())}</pre>"  # the same, selectable and read aloud
+        )
         state.update(
             u=u,
             v=v,
@@ -776,7 +789,9 @@ def pixel_explorer() -> Demo:
         "u": int_slider(3, 0, W - 1, "u (column)"),
         "v": int_slider(1, 0, H - 1, "v (row)"),
     }
-    demo = build_demo("pixel_explorer", controls, view, update, title="Which pixel is (u, v)?")
+    demo = build_demo(
+        "pixel_explorer", controls, view, update, title="Which pixel is (u, v)?", extra=[text]
+    )
 
     def on_click(event) -> None:
         if event.inaxes is not ax or event.xdata is None:
