@@ -6,6 +6,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 from matplotlib.patches import Rectangle
 
@@ -615,3 +616,72 @@ def draw_homogeneous_rays(
         "meets the plane w = 1.",
     )
     return multiples
+
+
+def describe_pixel_panels(fig: Figure) -> None:
+    """Give lesson 00's figure of section 3.1 its alt text: the pixel grid, the rows of X, the camera frame.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure drawn by :func:`draw_pixel_grid`, :func:`draw_point_rows` and :func:`draw_camera_frame`.
+    """
+    alt_text(
+        fig,
+        "Three panels. Left: a 4 x 3 checkerboard image with pixel centres at whole numbers, u from -0.5 to 3.5 "
+        "and v from -0.5 to 2.5 at the edges; orange dots X[0] at (0, 0), X[2] at the centre (1.5, 1) and X[1] at "
+        "(3, 1), whose pixel is outlined and labelled img[1, 3]. Middle: the array X, one row (u, v) per point. "
+        "Right: the camera frame seen from behind: x right (red), y down (green), z into the page (blue, a circled "
+        "cross at the principal axis); the image plane divided into the same 4 x 3 pixels, with u (red) and v "
+        "(green) running along x and y from (0, 0), the top-left pixel's centre, half a pixel in from the plane's "
+        "corner.",
+    )
+
+
+def describe_rotation_about(fig: Figure) -> None:
+    """Give lesson 00's figure of section 3.3 its alt text: a quarter rotation about the origin and about the centre.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure of two :func:`draw_turn_about` panels, about (0, 0) and about (1.5, 1).
+    """
+    alt_text(
+        fig,
+        "Two panels, v down. Grey: the outline and 12 pixel centres of a 4 x 3 image. Black: the same rotated a "
+        "quarter turn clockwise by R(90 degrees); orange: the top-right pixel (3, 0) before and after. Left, about "
+        "the origin (0, 0), ringed at the top-left pixel: the image swings out to negative u, and an orange arc "
+        "about the origin takes the top-right pixel (3, 0) to (0, 3). Right, about the centre (1.5, 1), ringed: "
+        "the image rotates in place, 3 wide and 4 tall, and an arc about the centre takes (3, 0) to (2.5, 2.5). "
+        "A key under the panels names each mark.",
+    )
+
+
+def draw_uint8_wrap(axes: Sequence[Axes], wrapped: np.ndarray, clipped: np.ndarray) -> None:
+    """A grey photo brightened by 60 in uint8 (left: the white wraps round to dark) and in float, clipped (right).
+
+    Parameters
+    ----------
+    axes : two matplotlib.axes.Axes
+        Left: ``wrapped``; right: ``clipped``.
+    wrapped : (H, W) ndarray
+        ``photo + 60`` in uint8.
+    clipped : (H, W) ndarray
+        ``np.clip(photo.astype(float) + 60, 0, 255)``.
+    """
+    titles = (
+        "photo + 60 in uint8: the white wraps round to dark",
+        "np.clip(photo.astype(float) + 60, 0, 255)",
+    )
+    for ax, image, title in zip(axes, (wrapped, clipped), titles, strict=True):
+        ax.imshow(image, cmap="gray", vmin=0, vmax=255)
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel("u (px)", color=X_COLOUR)
+        ax.set_ylabel("v (px)", color=Y_COLOUR)
+    H, W = wrapped.shape[:2]
+    alt_text(
+        axes[0].figure,
+        f"Two panels of the grey chessboard photo, {W} x {H} pixels, brightened by 60. Left, in uint8: the white "
+        "squares and other bright parts wrap round to dark grey. Right, in float and clipped at 255: the photo "
+        "brighter, with everything above 195 clipped to white.",
+    )
