@@ -718,11 +718,17 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
     ax.set_xlim(-0.75, img.shape[1] - 0.25)
     ax.set_ylim(img.shape[0] - 0.25, -0.75)
     ax_text.axis("off")
-    ax_text.legend(*ax.get_legend_handles_labels(), loc="lower left", fontsize=8.5, frameon=False)
+    ax_text.legend(  # under the readout (up to 10 lines), not at the bottom: one block to read
+        *ax.get_legend_handles_labels(),
+        loc="upper left",
+        bbox_to_anchor=(0.0, 0.56),
+        fontsize=8.5,
+        frameon=False,
+    )
     readout = view.animate(
         ax_text.text(
             0.0,
-            1.0,
+            0.96,  # a little below the figure's top edge
             "",
             va="top",
             ha="left",
