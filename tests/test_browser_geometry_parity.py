@@ -183,7 +183,10 @@ def test_the_stack_check_arithmetic_equals_the_demo():
         for a, s, x0 in zip(angles, scales, starts, strict=True)
     ]
     calls += [("arrowheadSize", [a]) for a in angles]
-    calls += [("turnWay", [a, WAY_RADIUS, WAY_SWEEP_DEG, 25]) for a in angles]
+    calls += [
+        ("turnWay", [a, WAY_RADIUS * s, WAY_SWEEP_DEG, 25])
+        for a, s in zip(angles, scales, strict=True)
+    ]
     out = run_js(calls)
     worst = max(
         assert_twins(o, turn_and_scale(a, s), "turnAndScale")
@@ -203,8 +206,8 @@ def test_the_stack_check_arithmetic_equals_the_demo():
             for o, a in zip(out[2 * n : 3 * n], angles, strict=True)
         ),
         *(
-            assert_twins(o, turn_way(a, 25), "turnWay") if a else 0.0
-            for o, a in zip(out[3 * n :], angles, strict=True)
+            assert_twins(o, turn_way(a, 25, s), "turnWay") if a else 0.0
+            for o, a, s in zip(out[3 * n :], angles, scales, strict=True)
         ),
     )
     assert out[3 * n + list(angles).index(0.0)] == []  # no turn, no way

@@ -1584,9 +1584,8 @@ def test_read_and_turn_names_a_wrong_turn_centre_only_when_it_is_the_one_fit():
     with pytest.raises(AssertionError) as info:
         check("read_and_turn", _read_and_turn_about(lambda img, c: c[::-1]))
     message = str(info.value)
-    assert "the wrong centre, [1.5, 2.5]" in message and "width and height swapped" in message, (
-        message
-    )
+    assert "you turned about [1.5, 2.5], not about the centre c = [2.5, 1.5]" in message, message
+    assert "width and height swapped" in message, message
     assert "counted from 1" not in message, message
 
 

@@ -640,7 +640,7 @@ def test_stack_check_shows_the_way_of_the_turn_at_every_angle(angle):
     demo = DEMOS["stack_check"].builder()
     demo.set(angle=angle, scale=1.0)
     for ax in demo.figure.axes:
-        (way,) = [ln for ln in ax.lines if ln.get_label().startswith("the way it turns")]
+        (way,) = [ln for ln in ax.lines if ln.get_label().startswith("direction of rotation")]
         (head,) = [ln for ln in ax.lines if ln.get_label() == "_the way's arrowhead"]
         arc = np.column_stack(way.get_data())
         assert len(arc) >= 3 and np.allclose(np.hypot(*arc.T), WAY_RADIUS)
@@ -657,17 +657,59 @@ def test_stack_check_shows_the_way_of_the_turn_at_every_angle(angle):
     assert demo.state["way"] == {"y down": "no turn", "y up": "no turn"}
 
 
+def _distance_to_outline(points: np.ndarray, outline: np.ndarray) -> float:
+    """The smallest distance from ``points`` to the closed polyline ``outline`` (its segments)."""
+    a, b = outline[:-1], outline[1:]
+    ab = b - a
+    t = np.clip(((points[:, None] - a) * ab).sum(-1) / (ab * ab).sum(-1), 0, 1)
+    return float(np.hypot(*(points[:, None] - (a + t[..., None] * ab)).T).min())
+
+
+def test_stack_check_arrow_about_the_origin_never_touches_the_moved_house():
+    """At every angle and scale of the sweep the arrow's arc lies inside the house, clear of its outline.
+
+    Its radius goes with the scale (WAY_RADIUS s, the house's inradius is s), so at s = 0.3 and 0.5 it
+    no longer runs along the shrunk house's edge (a finding of the reviews).
+    """
+    from camlab.widgets.start_here import WAY_RADIUS
+
+    demo = DEMOS["stack_check"].builder()
+    for scale in (0.3, 0.5, 0.75, 1.0, 1.5, 2.0):
+        for angle in (
+            -180.0,
+            -135.0,
+            -90.0,
+            -30.0,
+            -15.0,
+            -5.0,
+            5.0,
+            15.0,
+            40.0,
+            90.0,
+            135.0,
+            180.0,
+        ):
+            demo.set(angle=angle, scale=scale)
+            (way,) = [
+                ln for ln in demo.figure.axes[0].lines if ln.get_label().startswith("direction of")
+            ]
+            arc = np.column_stack(way.get_data())
+            assert np.allclose(np.hypot(*arc.T), WAY_RADIUS * scale)
+            gap = _distance_to_outline(arc, demo.state["house"])
+            assert gap >= 0.45 * scale, (angle, scale, gap)  # half the inradius s, less a little
+
+
 @pytest.mark.parametrize(
     "angle, scale, note",
     [
         (0.0, 1.0, "(unmoved: no path)"),
-        (5.0, 1.0, "(short turn: arrow at (0, 0))"),
-        (-5.0, 1.0, "short turn"),
-        (15.0, 1.0, "short turn"),
-        (-19.0, 1.0, "short turn"),
+        (5.0, 1.0, "(rotation under 20°: see the arrow about (0, 0))"),
+        (-5.0, 1.0, "rotation under 20°"),
+        (15.0, 1.0, "rotation under 20°"),
+        (-19.0, 1.0, "rotation under 20°"),
         (20.0, 1.0, ""),
         (30.0, 1.0, ""),
-        (5.0, 1.5, "short turn"),
+        (5.0, 1.5, "rotation under 20°"),
         (0.0, 2.0, ""),
     ],
 )

@@ -6,6 +6,7 @@ from collections.abc import Sequence
 
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 from matplotlib.patches import Rectangle
 
@@ -430,9 +431,10 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
 
     ``cv2.imread`` stores each pixel's channels as B, G, R; matplotlib's ``imshow`` reads the three
     numbers as R, G, B, so the unflipped picture swaps red and blue: a red-orange spot turns blue.
-    ``bgr[..., ::-1]`` reverses the last axis and gives the true colours. Pixel ``(u, v)`` is ringed
-    in white edged with black in both panels, at x = u, y = v, wide of the spot so its colour shows, and
-    marked by a small white cross at its centre. The figure gets its alt text here.
+    ``bgr[..., ::-1]`` reverses the last axis and gives the true colours. A white box marks the 31 x 31
+    pixels about ``(u, v)``, and an inset in the top-right corner shows them enlarged, the pixel itself
+    outlined by a thin square, so the spot's colour is seen, not covered by a marker. The figure gets
+    its alt text here.
 
     Parameters
     ----------
@@ -450,12 +452,23 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
     )
     for ax, image, title in zip(axes, (bgr, bgr[..., ::-1]), titles, strict=True):
         ax.imshow(image)
-        ax.plot(u, v, "o", ms=34, mfc="none", mec="black", mew=4.2)  # a white ring edged in black,
-        ax.plot(
-            u, v, "o", ms=34, mfc="none", mec="white", mew=1.8
-        )  # wide enough to leave the spot clear
-        ax.plot(u, v, "+", ms=9, mec="black", mew=3.2)  # the pixel itself: a small cross,
-        ax.plot(u, v, "+", ms=9, mec="white", mew=1.3)  # white edged in black
+        half = 15  # the zoomed crop: 31 x 31 pixels about (u, v)
+        box = dict(fill=False, lw=1.2)
+        ax.add_patch(
+            Rectangle(
+                (u - half - 0.5, v - half - 0.5), 2 * half + 1, 2 * half + 1, ec="white", **box
+            )
+        )
+        zoom = ax.inset_axes((0.71, 0.6, 0.29, 0.4))
+        zoom.imshow(image)
+        zoom.set_xlim(u - half - 0.5, u + half + 0.5)
+        zoom.set_ylim(v + half + 0.5, v - half - 0.5)
+        zoom.add_patch(Rectangle((u - 0.5, v - 0.5), 1, 1, ec="white", **box))  # the pixel itself
+        zoom.set_xticks([])
+        zoom.set_yticks([])
+        for spine in zoom.spines.values():
+            spine.set_edgecolor("white")
+            spine.set_linewidth(1.5)
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("u (px)", color=X_COLOUR)
         ax.set_ylabel("v (px)", color=Y_COLOUR)
@@ -464,9 +477,43 @@ def draw_channel_order(axes: Sequence[Axes], bgr: np.ndarray, pixel: tuple[int, 
         axes[0].figure,
         f"Two panels of the same colour photo, {W} x {H} pixels, u and v in pixels. Left: cv2.imread's array "
         "shown as it is, red and blue swapped (a red-orange eyespot turns blue, yellow-green leaves turquoise). "
-        f"Right: the array flipped to R, G, B, with the true colours. In both, pixel ({u}, {v}) is ringed in "
-        "white and marked by a small white cross.",
+        f"Right: the array flipped to R, G, B, with the true colours. In both, a white box marks the 31 x 31 "
+        f"pixels about pixel ({u}, {v}), on the eyespot, and an inset in the top-right corner shows them "
+        "enlarged, the pixel outlined by a thin white square: blue on the left, red-orange on the right.",
     )
+
+
+def _mark_multiples(ax: Axes, marks: np.ndarray) -> None:
+    """Each (wx, wy, w) of ``marks`` (w = 1 included): a dot (but at w = 1), its drop line to w = 0, its label.
+
+    Marks below the plane w = 1 are drawn first (zorder 0) and faded, so the plane's fill covers them.
+    """
+    for wx, wy, w in marks:
+        below = w < 1
+        ax.plot([wx, wx], [wy, wy], [0, w], color="0.35", lw=0.8, ls=":", zorder=0 if below else 3)
+        if w != 1.0:
+            ax.plot(
+                [wx],
+                [wy],
+                [w],
+                "o",
+                color="black",
+                ms=5,
+                alpha=0.6 if below else 1.0,
+                zorder=0 if below else 6,
+            )
+        ax.text(
+            wx + (-0.12 if w > 1 else 0.12),  # above w = 1 on the left: clear of the w axis's ticks
+            wy,
+            w
+            - 0.22 * below,  # a label below the plane sits a little lower, clear of its front edge
+            f"w = {w:g}  " if w > 1 else f"  w = {w:g}" + (", below the plane" if below else ""),
+            ha="right" if w > 1 else "left",
+            fontsize=9,
+            zorder=0 if below else 8,
+            alpha=0.75 if below else 1.0,
+            path_effects=palette.halo(2),
+        )
 
 
 def draw_homogeneous_rays(
@@ -477,7 +524,8 @@ def draw_homogeneous_rays(
     The point (x, y) is the ray through the origin and (x, y, 1), which crosses the plane w = 1
     (grey) at the point itself (orange). Its multiples (wx, wy, w), one per ``scales`` entry (black
     dots, each labelled with its w and dropped to w = 0 by a dotted line, so its height reads), lie
-    on the same ray (dashed below the plane w = 1, solid above), and dividing by w slides each back
+    on the same ray (dashed below the plane w = 1, solid above; what lies below is drawn under the
+    plane's fill and faded, so it reads as below), and dividing by w slides each back
     to (x, y, 1). A vector (dx, dy, 0) (dark grey arrow) lies in the plane w = 0 (dashed outline): its
     ray runs parallel to the plane w = 1 and never meets it, so it names a direction, an ideal
     point, not a point of the image. The figure gets its alt text here, naming these coordinates.
@@ -520,9 +568,8 @@ def draw_homogeneous_rays(
     )
     ax.plot(*square.T, np.ones(5), color="0.45", lw=1, label="the plane w = 1: the image", zorder=2)
     ax.plot(*square.T, np.zeros(5), color="0.2", lw=1.4, ls="--", label="the plane w = 0", zorder=2)
-    ax.plot(
-        [0, x], [0, y], [0, 1], color=POINT_COLOUR, lw=1.4, ls=(0, (3, 2)), zorder=3
-    )  # below w = 1
+    # What lies below the plane w = 1 is drawn first (zorder 0) and faded, so its fill covers it: below, not on.
+    ax.plot([0, x], [0, y], [0, 1], color=POINT_COLOUR, lw=1.4, ls=(0, (3, 2)), alpha=0.7, zorder=0)
     ax.plot(
         [x, top * x],
         [y, top * y],
@@ -532,11 +579,8 @@ def draw_homogeneous_rays(
         label="the ray of (x, y)",
         zorder=5,
     )
-    for wx, wy, w in (*multiples, (x, y, 1.0)):  # drop lines to w = 0 show each mark's height
-        ax.plot([wx, wx], [wy, wy], [0, w], color="0.35", lw=0.8, ls=":", zorder=3)
-    ax.plot(
-        *multiples.T, "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray", zorder=6
-    )
+    _mark_multiples(ax, np.vstack([multiples, [x, y, 1.0]]))
+    ax.plot([], [], "o", color="black", ms=5, ls="none", label="(wx, wy, w) on the ray")
     ax.plot(
         [x],
         [y],
@@ -550,10 +594,6 @@ def draw_homogeneous_rays(
         label="(x, y, 1): divided by w",
         zorder=7,
     )
-    for wx, wy, w in (*multiples, (x, y, 1.0)):
-        ax.text(
-            wx + 0.12, wy, w, f"  w = {w:g}", fontsize=9, zorder=8, path_effects=palette.halo(2)
-        )
     ax.quiver(0, 0, 0, dx, dy, 0, color=DIRECTION_COLOUR, lw=2.2, arrow_length_ratio=0.15, zorder=4)
     ax.plot([], [], color=DIRECTION_COLOUR, lw=2.2, label="(dx, dy, 0): w = 0, a direction")
     ax.plot([0], [0], [0], "k+", ms=9, ls="none", label="the origin (0, 0, 0)", zorder=8)
@@ -562,7 +602,7 @@ def draw_homogeneous_rays(
     ax.set_zticks([0, 1, 2])
     ax.set_xlabel("x", color=X_COLOUR)
     ax.set_ylabel("y", color=Y_COLOUR)
-    ax.set_zlabel("w", color=Z_COLOUR)
+    ax.set_zlabel("w", color=Z_COLOUR, labelpad=-3)
     ax.view_init(elev=22, azim=-58)
     ax.set_box_aspect(None, zoom=1.2)  # fill the figure: mplot3d leaves a wide margin
     marks = " and ".join(f"({wx:g}, {wy:g}, {w:g}), labelled w = {w:g}" for wx, wy, w in multiples)
@@ -571,8 +611,77 @@ def draw_homogeneous_rays(
         "A 3-D sketch with axes x, y and w. A grey square is the plane w = 1, the image; a dashed square below "
         "it is the plane w = 0 through the origin. An orange ray from the origin, dashed below the plane and "
         f"solid above, pierces the plane w = 1 at the orange dot ({x:g}, {y:g}, 1), labelled w = 1; black dots "
-        f"on the same ray mark {marks}; a dotted line drops from each dot to the plane w = 0. A dark grey "
+        f"on the same ray mark {marks} (those below the plane faded, seen through it); a dotted line drops from each dot to the plane w = 0. A dark grey "
         f"arrow from the origin lies in the plane w = 0: the direction ({dx:g}, {dy:g}, 0), whose ray never "
         "meets the plane w = 1.",
     )
     return multiples
+
+
+def describe_pixel_panels(fig: Figure) -> None:
+    """Give lesson 00's figure of section 3.1 its alt text: the pixel grid, the rows of X, the camera frame.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure drawn by :func:`draw_pixel_grid`, :func:`draw_point_rows` and :func:`draw_camera_frame`.
+    """
+    alt_text(
+        fig,
+        "Three panels. Left: a 4 x 3 checkerboard image with pixel centres at whole numbers, u from -0.5 to 3.5 "
+        "and v from -0.5 to 2.5 at the edges; orange dots X[0] at (0, 0), X[2] at the centre (1.5, 1) and X[1] at "
+        "(3, 1), whose pixel is outlined and labelled img[1, 3]. Middle: the array X, one row (u, v) per point. "
+        "Right: the camera frame seen from behind: x right (red), y down (green), z into the page (blue, a circled "
+        "cross at the principal axis); the image plane divided into the same 4 x 3 pixels, with u (red) and v "
+        "(green) running along x and y from (0, 0), the top-left pixel's centre, half a pixel in from the plane's "
+        "corner.",
+    )
+
+
+def describe_rotation_about(fig: Figure) -> None:
+    """Give lesson 00's figure of section 3.3 its alt text: a quarter rotation about the origin and about the centre.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure of two :func:`draw_turn_about` panels, about (0, 0) and about (1.5, 1).
+    """
+    alt_text(
+        fig,
+        "Two panels, v down. Grey: the outline and 12 pixel centres of a 4 x 3 image. Black: the same rotated a "
+        "quarter turn clockwise by R(90 degrees); orange: the top-right pixel (3, 0) before and after. Left, about "
+        "the origin (0, 0), ringed at the top-left pixel: the image swings out to negative u, and an orange arc "
+        "about the origin takes the top-right pixel (3, 0) to (0, 3). Right, about the centre (1.5, 1), ringed: "
+        "the image rotates in place, 3 wide and 4 tall, and an arc about the centre takes (3, 0) to (2.5, 2.5). "
+        "A key under the panels names each mark.",
+    )
+
+
+def draw_uint8_wrap(axes: Sequence[Axes], wrapped: np.ndarray, clipped: np.ndarray) -> None:
+    """A grey photo brightened by 60 in uint8 (left: the white wraps round to dark) and in float, clipped (right).
+
+    Parameters
+    ----------
+    axes : two matplotlib.axes.Axes
+        Left: ``wrapped``; right: ``clipped``.
+    wrapped : (H, W) ndarray
+        ``photo + 60`` in uint8.
+    clipped : (H, W) ndarray
+        ``np.clip(photo.astype(float) + 60, 0, 255)``.
+    """
+    titles = (
+        "photo + 60 in uint8: the white wraps round to dark",
+        "np.clip(photo.astype(float) + 60, 0, 255)",
+    )
+    for ax, image, title in zip(axes, (wrapped, clipped), titles, strict=True):
+        ax.imshow(image, cmap="gray", vmin=0, vmax=255)
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel("u (px)", color=X_COLOUR)
+        ax.set_ylabel("v (px)", color=Y_COLOUR)
+    H, W = wrapped.shape[:2]
+    alt_text(
+        axes[0].figure,
+        f"Two panels of the grey chessboard photo, {W} x {H} pixels, brightened by 60. Left, in uint8: the white "
+        "squares and other bright parts wrap round to dark grey. Right, in float and clipped at 255: the photo "
+        "brighter, with everything above 195 clipped to white.",
+    )

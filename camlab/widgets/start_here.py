@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import html
+
 import ipywidgets as W
 import numpy as np
+from ipywidgets import HTML
 from matplotlib.colors import to_hex, to_rgba
 from matplotlib.markers import MarkerStyle
 from matplotlib.path import Path
@@ -25,10 +28,10 @@ ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
 # the arrowhead (a dart there read as the tip moving on), so none is drawn and the readout points to the arrow
 # about the origin (turn_way), drawn at every angle; the browser's twin (stack_check.js) gets both in the scene.
 SHORT_TURN_DEG = 20.0
-SHORT_TURN_NOTE = "  (short turn: arrow at (0, 0))"
+SHORT_TURN_NOTE = f"  (rotation under {SHORT_TURN_DEG:g}°: see the arrow about (0, 0))"
 # The way of the turn at every angle, short ones too: an arrow on a fixed arc about the origin, the centre of
 # the turn, on the side away from the roof tip's start (below it on y-down axes), clear of the dot on a short turn.
-WAY_RADIUS = 0.5  # plot units: inside the house from scale 0.55 up
+WAY_RADIUS = 0.5  # plot units at scale 1, times the scale: half the house's inradius, so never on its outline
 WAY_SWEEP_DEG = 80.0
 MOVED = (
     "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
@@ -73,10 +76,11 @@ def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 
     return np.vstack([arc, scale * arc[-1]])
 
 
-def turn_way(angle_deg: float, samples: int = 25) -> np.ndarray:
-    r"""The arc of the arrow that shows which way the house turns, at any angle: fixed length, about the origin.
+def turn_way(angle_deg: float, samples: int = 25, scale: float = 1.0) -> np.ndarray:
+    r"""The arc of the arrow that shows which way the house turns, at any angle: fixed sweep, about the origin.
 
-    An arc of :data:`WAY_SWEEP_DEG` on the circle of :data:`WAY_RADIUS` about the origin, centred on
+    An arc of :data:`WAY_SWEEP_DEG` on the circle of radius :data:`WAY_RADIUS` times ``scale`` about the
+    origin (the moved house's inradius is ``scale``, so the arc stays inside it at every angle), centred on
     the direction opposite the roof tip's start, (0, 1), and running the way :math:`R(\theta)` turns for the
     sign of ``angle_deg``; its arrowhead goes at the last point. Its length does not grow with the angle, so
     a turn of 5° shows its way as clearly as one of 90°.
@@ -87,6 +91,8 @@ def turn_way(angle_deg: float, samples: int = 25) -> np.ndarray:
         The turn θ, degrees; only its sign matters.
     samples : int
         Points along the arc, both ends included.
+    scale : float
+        The house's scale s; the arc's radius is :data:`WAY_RADIUS` times it.
 
     Returns
     -------
@@ -96,7 +102,7 @@ def turn_way(angle_deg: float, samples: int = 25) -> np.ndarray:
     if angle_deg == 0:
         return np.zeros((0, 2))
     phi = np.radians(90.0 + np.sign(angle_deg) * WAY_SWEEP_DEG * np.linspace(-0.5, 0.5, samples))
-    return WAY_RADIUS * np.column_stack([np.cos(phi), np.sin(phi)])
+    return WAY_RADIUS * scale * np.column_stack([np.cos(phi), np.sin(phi)])
 
 
 def turn_and_scale(angle_deg: float, scale: float) -> np.ndarray:
@@ -202,7 +208,7 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
             ":",
             color=palette.ORANGE,
             lw=1.6,
-            label="roof tip's path: turn, then scale",
+            label="roof tip's path: rotation, then scaling",
             path_effects=palette.halo(1.6),
         )[0]
     )
@@ -220,7 +226,7 @@ def _house_panel(ax, y_down: bool, view: FigureView) -> dict:
         )[0]
     )
     way = view.animate(
-        ax.plot([], [], color=MOVED, lw=1.5, label="the way it turns, about (0, 0)")[0]
+        ax.plot([], [], color=MOVED, lw=1.5, label="direction of rotation, about (0, 0)")[0]
     )
     way_head = view.animate(
         ax.plot([], [], ls="none", marker=ARROWHEAD, ms=10, color=MOVED, mec="white", mew=0.5)[0]
@@ -442,7 +448,9 @@ def stack_check() -> Demo:
         # dot read as the tip moving on); the readout says so, and cell 7 of the lesson names the turn.
         if abs(angle) < SHORT_TURN_DEG:
             way = np.zeros(2)
-        arc = turn_way(angle)  # the way of the turn, at every angle but 0
+        arc = turn_way(
+            angle, scale=s
+        )  # the way of the turn, at every angle but 0, inside the house
         for panel in panels:
             panel["way"].set_data(arc[:, 0], arc[:, 1])
             ends = arc[-2:] if len(arc) else np.zeros((2, 2))
@@ -467,6 +475,9 @@ def stack_check() -> Demo:
         readout.set_text(
             numbers + path_note(angle, s)
         )  # at 0°, scale 1 the moved house hides the original
+        text.value = (
+            f"roof tip (orange dot) at {numbers}{path_note(angle, s)}"  # as text beside the sliders
+        )
         # tip: where the orange dot is drawn (lesson 00 recomputes it by hand); readout: the numbers shown
         # arrow: where the arrowhead sits, and its angle on screen in each panel (None: no dart drawn)
         # turns: the way each panel's drawn arc turns on screen (screen_turn), measured, not read off the angle
@@ -485,7 +496,10 @@ def stack_check() -> Demo:
         "angle": slider(DEFAULT_ANGLE, -180.0, 180.0, 1.0, "angle θ (°)", readout_format=".0f"),
         "scale": slider(1.0, 0.3, 2.0, 0.05, "scale s"),
     }
-    demo = build_demo("stack_check", controls, view, update, title="Is everything working?")
+    text = HTML()  # the readout beside the sliders too: selectable, and read by a screen reader
+    demo = build_demo(
+        "stack_check", controls, view, update, title="Is everything working?", extra=[text]
+    )
     view.publish(demo, _browser_scene(panels, readout, view.fig.dpi))  # the browser draws the moves
     return demo
 
@@ -704,11 +718,17 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
     ax.set_xlim(-0.75, img.shape[1] - 0.25)
     ax.set_ylim(img.shape[0] - 0.25, -0.75)
     ax_text.axis("off")
-    ax_text.legend(*ax.get_legend_handles_labels(), loc="lower left", fontsize=8.5, frameon=False)
+    ax_text.legend(  # under the readout (up to 10 lines), not at the bottom: one block to read
+        *ax.get_legend_handles_labels(),
+        loc="upper left",
+        bbox_to_anchor=(0.0, 0.56),
+        fontsize=8.5,
+        frameon=False,
+    )
     readout = view.animate(
         ax_text.text(
             0.0,
-            1.0,
+            0.96,  # a little below the figure's top edge
             "",
             va="top",
             ha="left",
@@ -747,6 +767,7 @@ def pixel_explorer() -> Demo:
     img = 10 * rows + cols
     view = FigureView(figsize=(8.2, 3.9))
     ax, square, swapped, centre, corner, readout = _explorer_figure(view, img)
+    text = HTML()  # the readout beside the sliders too, as text a screen reader reads
 
     def update(values: dict, state: dict) -> None:
         u, v = int(values["u"]), int(values["v"])
@@ -758,6 +779,9 @@ def pixel_explorer() -> Demo:
         if inside:
             swapped.set_xy((v - 0.5, u - 0.5))  # row u, column v: the pixel (v, u)
         readout.set_text(_explorer_text(u, v, img))
+        text.value = (
+            f"<pre>{html.escape(readout.get_text())}</pre>"  # the same, selectable and read aloud
+        )
         state.update(
             u=u,
             v=v,
@@ -771,7 +795,9 @@ def pixel_explorer() -> Demo:
         "u": int_slider(3, 0, W - 1, "u (column)"),
         "v": int_slider(1, 0, H - 1, "v (row)"),
     }
-    demo = build_demo("pixel_explorer", controls, view, update, title="Which pixel is (u, v)?")
+    demo = build_demo(
+        "pixel_explorer", controls, view, update, title="Which pixel is (u, v)?", extra=[text]
+    )
 
     def on_click(event) -> None:
         if event.inaxes is not ax or event.xdata is None:

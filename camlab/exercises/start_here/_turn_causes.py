@@ -215,6 +215,47 @@ def _read_turned(s, to_int) -> bool:
     return not np.allclose(s.turned, s.X) and _reads(s, vv, uu)
 
 
+def rescaled_by(s) -> float | None:
+    """The one factor k with values = k img[v, u] (k != 1), if the values are the right pixels rescaled."""
+    right = s.img[s.v, s.u].astype(float)
+    got = np.asarray(s.values, dtype=float)
+    if s.values.shape != right.shape or not right.any():
+        return None
+    k = float(got @ right / (right @ right))
+    return k if not np.isclose(k, 1.0) and np.allclose(got, k * right, rtol=1e-6, atol=0) else None
+
+
+def _factor_words(k: float) -> str:
+    """k as the student probably wrote it: divided by 255 (a 0 .. 1 normalisation), times 255, ..."""
+    for n in (255, 256, 65535, 1000, 10, 100):
+        if np.isclose(k, 1 / n):
+            return f"divided by {n}" + (
+                " (a 0 .. 1 normalisation)" if n in (255, 256, 65535) else ""
+            )
+        if np.isclose(k, n):
+            return f"multiplied by {n}"
+    return f"multiplied by {k:.4g}"
+
+
+def _half_read(s, d: float) -> bool:
+    """Whether the values were read at np.rint(X + d), half a pixel added before rounding."""
+    uu, vv = np.rint(s.X + d).astype(int).T
+    moved = not (np.array_equal(uu, s.u) and np.array_equal(vv, s.v))
+    return moved and _reads(s, vv, uu)
+
+
+def _half_read_hint(s, d: float) -> str:
+    uu, vv = np.rint(s.X + d).astype(int).T
+    k = int(np.argmax((uu != s.u) | (vv != s.v)))
+    return (
+        f"you added {d:+g} before rounding, np.rint(X {'+' if d > 0 else '-'} 0.5): X[{k}] = ({s.u[k]}, {s.v[k]}) "
+        f"read pixel ({uu[k]}, {vv[k]}), and since np.rint rounds halves to the even number, other points read "
+        "their own pixel. Half a pixel moves a point from its pixel's centre to a corner (Pillow's and COLMAP's "
+        "whole numbers, section 3.4); here pixel centres are whole numbers, so round X itself: "
+        "u, v = np.rint(X).astype(int).T"
+    )
+
+
 def _truncated_hint(X: np.ndarray) -> str:
     """The hint for values read at the truncated points, quoting the first entry of X that truncation moved."""
     i, j = np.argwhere(np.trunc(X) != np.rint(X))[0]
@@ -258,6 +299,14 @@ VALUE_MISTAKES = (
         ),
     ),
     Mistake(
+        "rescaled",
+        lambda s: rescaled_by(s) is not None,
+        lambda s: (
+            f"the right pixels, but every value {_factor_words(rescaled_by(s))}: return the pixel values as "
+            "the image stores them, img[v, u], with no rescaling"
+        ),
+    ),
+    Mistake(
         "img[u, v]",
         lambda s: s.H == s.W and np.allclose(s.values, s.img[s.u, s.v]),
         "img[u, v] reads row u, column v: the transposed pixel. numpy indexes the row first, and the row is v: img[v, u]",
@@ -292,6 +341,14 @@ VALUE_MISTAKES = (
         ),
     ),
     *(_shift_mistake(dv, du) for dv, du in ((-1, -1), (0, -1), (-1, 0), (1, 1), (0, 1), (1, 0))),
+    *(
+        Mistake(
+            f"np.rint(X {d:+g})",
+            lambda s, d=d: _half_read(s, d),
+            lambda s, d=d: _half_read_hint(s, d),
+        )
+        for d in (0.5, -0.5)
+    ),
     Mistake(
         "read at the turned points",
         lambda s: (
@@ -364,6 +421,36 @@ def _about(centre: Mistake, transposed: bool):
         return (s.X - w) @ M + w
 
     return answer
+
+
+_HALF_STEPS = [
+    (du, dv) for du in (-0.5, 0.0, 0.5) for dv in (-0.5, 0.0, 0.5) if (du, dv) != (0.0, 0.0)
+]
+
+
+def _half_off(d) -> str:
+    """Where c + d lies from c, for d in half pixels: 'half a pixel left of and above'."""
+    words = [
+        w
+        for x, w in (
+            (d[0], "left of" if d[0] < 0 else "right of"),
+            (d[1], "above" if d[1] < 0 else "below"),
+        )
+        if x
+    ]
+    return "half a pixel " + " and ".join(words)
+
+
+def _about_half_off(s):
+    """X turned about c + d, half a pixel off the (right) centre the student returned, for the d that fits."""
+    if s.centre_named or abs(np.linalg.det(np.eye(2) - s.A)) < 1e-9:
+        return None
+    for d in _HALF_STEPS:
+        w = s.c + d
+        if np.allclose(s.got, (s.X - w) @ s.A.T + w):
+            s.half = d
+            return s.got
+    return None
 
 
 # Checked in order (answer against answer, np.allclose) on the turned points, for the points ``s.X``,
@@ -479,6 +566,15 @@ TURN_MISTAKES = (
             "passes on a turn, but for any other A (this one) it is another move: x' = c + A (x - c), (X - c) @ A.T + c"
         ),
     ),
+    Mistake(
+        "about c, half a pixel off",
+        _about_half_off,
+        lambda s: (
+            f"you turned about {numbers(s.c + s.half)}, {_half_off(s.half)} the centre c = {numbers(s.c)} you "
+            "returned (it is right): a 0.5 crept into the turn, as (X + 0.5 - c) @ A.T + c - 0.5 or Pillow's centre "
+            "(W / 2, H / 2) give. Pixel centres are whole numbers here (section 3.4): (X - c) @ A.T + c"
+        ),
+    ),
     *(
         Mistake(
             f"about {centre.name}" + (", X @ A" if transposed else ""),
@@ -488,7 +584,8 @@ TURN_MISTAKES = (
                     f"you turned about {numbers(centre.answer(s))}, not the image's centre: fix c first "
                     "(above), then check the turn"
                     if s.centre_named
-                    else f"you turned about the wrong centre, {numbers(centre.answer(s))}: {centre.hint}"
+                    else f"you turned about {numbers(centre.answer(s))}, not about the centre c = {numbers(s.c)} "
+                    f"you returned (it is right); in the turn, {centre.hint}"
                 )
                 + ("; and X @ A applies A's transpose: X @ A.T" if transposed else "")
             ),
@@ -519,13 +616,19 @@ def turned_cause(
     if t.shape != (n, 2):
         return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
     s = SimpleNamespace(
-        X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c, centre_named=centre_named
+        X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c, centre_named=centre_named, got=t
     )
     shift = t - s.turned
     if np.allclose(shift, shift[0]) and not np.allclose(
         shift[0], 0
     ):  # every point off by the same (du, dv)
         rest = first_mistake(TURN_MISTAKES, s, t, np.allclose)
+        if not rest and np.allclose(np.abs(shift[0]), 0.5):
+            return (
+                f"every point is off by {numbers(shift[0])}, half a pixel: the turn is right, but done in Pillow's "
+                "or COLMAP's coordinates, (u + 0.5, v + 0.5), where whole numbers are pixel corners (section 3.4), "
+                "and not converted back (or a 0.5 was added): here pixel centres are whole numbers, (X - c) @ A.T + c"
+            )
         return rest or (
             f"every point is off by the same shift, {numbers(shift[0].round(4))}: the turn is right, but the centre "
             "subtracted and the one added back differ (or a constant was added): (X - c) @ A.T + c, the same c twice"

@@ -82,6 +82,22 @@ RAISED = (
         ),
     ),
     Mistake(
+        "half a pixel added before rounding",
+        lambda s: (
+            _index_error(s)
+            and s.index == s.size
+            and s.index in np.rint(s.X[:, 1 - s.axis] + 0.5).astype(int)
+            and s.index - 1 in np.rint(s.X[:, 1 - s.axis]).astype(int)
+        ),
+        lambda s: (
+            f"an index {s.size} on an axis of size {s.size}, one past the last {('row', 'column')[s.axis]}: counting "
+            "from 1? numpy and pixel coordinates count from 0. Or half a pixel added before rounding? np.rint(X + 0.5) "
+            f"sends {s.size - 1} to {s.size - 1}.5 and on to {s.size} (np.rint rounds halves to even); pixel centres "
+            "are whole numbers here, not Pillow's (u + 0.5, v + 0.5) (section 3.4). Round X itself: "
+            "u, v = np.rint(X).astype(int).T; img[v, u]"
+        ),
+    ),
+    Mistake(
         "counted from 1",
         lambda s: _index_error(s) and s.index == s.size,
         lambda s: (

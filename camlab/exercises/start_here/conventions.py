@@ -346,7 +346,43 @@ register_exercise(
             (_rt_wrong(turn=lambda X, A, c: X @ A.T + c), "never subtracted it before"),
             (
                 _rt_wrong(turn=lambda X, A, c: (X - c) @ A.T + c + 0.5),
-                "every point is off by the same shift, [0.5, 0.5]",
+                "every point is off by [0.5, 0.5], half a pixel: the turn is right, but done in Pillow's",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - c) @ A.T + c + np.array([0.25, -1.0])),
+                "every point is off by the same shift, [0.25, -1]",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X + 0.5 - c) @ A.T + c - 0.5),
+                "you turned about [2, 1], half a pixel left of and above the centre c = [2.5, 1.5] you returned",
+            ),
+            (
+                _rt_wrong(
+                    turn=lambda X, A, c: (X - np.floor(c)) @ A.T + np.floor(c) if c[0] % 1 else X
+                ),
+                "you turned about [2, 1], half a pixel left of and above",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - 2 * c) @ A.T + 2 * c),
+                "you turned about [5, 3], not about the centre c = [2.5, 1.5] you returned (it is right); in the "
+                "turn, that is the last pixel",
+            ),
+            (_rt_wrong(read=lambda img, u, v: img[v, u] / 255), "every value divided by 255"),
+            (
+                lambda img, X, A: (
+                    read_and_turn(img, X, A)[0],
+                    img[tuple(np.rint(X - 0.5).astype(int).T[::-1])],
+                    read_and_turn(img, X, A)[2],
+                ),
+                "you added -0.5 before rounding, np.rint(X - 0.5): X[0] = (5, 0) read pixel (4, 0)",
+            ),
+            (
+                lambda img, X, A: (
+                    read_and_turn(img, X, A)[0],
+                    img[tuple(np.rint(X + 0.5).astype(int).T[::-1])],
+                    read_and_turn(img, X, A)[2],
+                ),
+                "Or half a pixel added before rounding? np.rint(X + 0.5) sends 3 to 3.5",
             ),
             (
                 _rt_wrong(turn=lambda X, A, c: X - c),
@@ -424,7 +460,7 @@ register_exercise(
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A.T), "forgot to add the centre back"),
             (
                 _rt_wrong(turn=lambda X, A, c: (X - (c + 0.5)) @ A.T + (c + 0.5)),
-                "you turned about the wrong centre, [3, 2]",
+                "you turned about [3, 2], half a pixel right of and below the centre c = [2.5, 1.5]",
             ),
             (
                 _rt_wrong(

@@ -131,7 +131,31 @@ DIVIDE_MISTAKES = (
             "fractions (-0.6 / -0.3 is 2, but 8.5 / 2 is 4.25); keep floats"
         ),
     ),
+    Mistake(
+        "half a pixel added",
+        lambda s: any(_same(s, s.h[:, :2] / s.h[:, 2:] + d) for d in (0.5, -0.5)),
+        (
+            "you divided right, then added or subtracted 0.5: (x, y) is (wx / w, wy / w) exactly. A half pixel "
+            "belongs to a change of pixel convention (Pillow's and COLMAP's corners, section 3.4), not to the "
+            f"division: {KEEPDIMS}"
+        ),
+    ),
+    Mistake(
+        "rescaled",
+        lambda s: _rescaled(s) is not None,
+        lambda s: (
+            f"you divided right, then scaled every point by the same factor, {_rescaled(s):.6g} (units, or a "
+            f"normalisation?): the point is (wx / w, wy / w) itself: {KEEPDIMS}"
+        ),
+    ),
 )
+
+
+def _rescaled(s) -> float | None:
+    """The one factor k != 1 with answer = k (h[:, :2] / h[:, 2:]), if there is one."""
+    right = (s.h[:, :2] / s.h[:, 2:]).ravel()
+    k = float(s.g.ravel() @ right / (right @ right))
+    return k if not np.isclose(k, 1.0) and _same(s, k * right.reshape(-1, 2)) else None
 
 
 def _diagnose(args, got, expected) -> str:
@@ -357,6 +381,8 @@ register_exercise(
             ),
             (_nan_to_num, "np.nan_to_num"),
             (_opencv_way, "cv2.convertPointsFromHomogeneous"),
+            (_variant(lambda h: h[:, :2] / h[:, 2:] + 0.5), "then added or subtracted 0.5"),
+            (_variant(lambda h: h[:, :2] / h[:, 2:] / 1000), "the same factor, 0.001"),
         ),
         in_place_examples={
             "h": ("`h /= h[:, 2:]`, `h[:, :2] /= h[:, 2:]`", "`h[:, :2] / h[:, 2:]`"),

@@ -102,7 +102,7 @@ export function turnPath(angleDeg, scale, start, samples = 61) {
   return out;
 }
 
-// Twin: camlab.widgets.start_here.turn_way(angle_deg, samples): the fixed arc of the arrow that shows the
+// Twin: camlab.widgets.start_here.turn_way(angle_deg, samples, scale), radius = WAY_RADIUS * scale: the arc of the arrow that shows the
 // way of the turn, sweepDeg about (0, 1) on the circle of `radius`, the way of the angle's sign; [] at 0.
 export function turnWay(angleDeg, radius, sweepDeg, samples = 25) {
   if (angleDeg === 0) return [];

@@ -12,7 +12,7 @@ export function drawStackCheck(ctx, scene, p) {
   if (Math.abs(p.angle) < scene.shortTurnDeg) way = [0, 0];
   const st = scene.styles;
   const arrow = { ...st.arrow, size: arrowheadSize(p.angle) * scene.pxPerPoint };
-  const arc = turnWay(p.angle, scene.wayRadius, scene.waySweepDeg);
+  const arc = turnWay(p.angle, scene.wayRadius * p.scale, scene.waySweepDeg); // inside the house at every scale
   for (const panel of scene.panels) {
     const T = panel.toPixels;
     const px = (pts) => mapPoints(T, pts);
