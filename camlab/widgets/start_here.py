@@ -637,6 +637,45 @@ def _explorer_image(ax, img: np.ndarray) -> None:
     )  # clear of the +
 
 
+def _pixel_square(ax, colour: str, lw: float, ls, label: str):
+    """An unfilled one-pixel square for the pixel explorer, drawn over the spines.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+        The image axes.
+    colour : str
+        Its edge colour (from the palette).
+    lw : float
+        Its line width in points.
+    ls : str or tuple
+        Its line style.
+    label : str
+        Its legend entry.
+
+    Returns
+    -------
+    matplotlib.patches.Rectangle
+        The square, at (0, 0) until the demo moves it.
+    """
+    from matplotlib.patches import Rectangle
+
+    return ax.add_patch(
+        Rectangle(
+            (0, 0),
+            1,
+            1,
+            fill=False,
+            ec=colour,
+            lw=lw,
+            ls=ls,
+            clip_on=False,
+            zorder=3,  # over the spines (2.5) on every draw, the first as the live ones
+            label=label,
+        )
+    )
+
+
 def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
     """The pixel explorer's image with its values, its key and its animated marks.
 
@@ -653,39 +692,16 @@ def _explorer_figure(view: FigureView, img: np.ndarray) -> tuple:
         The image axes, then the animated pixel square, swapped-read square, centre dot,
         top-left corner marker and readout text.
     """
-    from matplotlib.patches import Rectangle
-
     ax, ax_text = view.fig.subplots(1, 2, width_ratios=[1.0, 1.0])
     _explorer_image(ax, img)
-    square = view.animate(
-        ax.add_patch(
-            Rectangle(
-                (0, 0),
-                1,
-                1,
-                fill=False,
-                ec=palette.ORANGE,
-                lw=2.8,
-                clip_on=False,
-                zorder=3,  # over the spines (2.5) on every draw, the first as the live ones
-                label="pixel (u, v)",
-            )
-        )
-    )
+    square = view.animate(_pixel_square(ax, palette.ORANGE, 2.8, "-", "pixel (u, v)"))
     swapped = view.animate(
-        ax.add_patch(
-            Rectangle(
-                (0, 0),
-                1,
-                1,
-                fill=False,
-                ec=palette.PURPLE,
-                lw=2.0,
-                ls=(0, (4, 2)),
-                clip_on=False,
-                zorder=3,
-                label="the pixel img[u, v] reads\n(none for u ≥ H: an IndexError)",
-            )
+        _pixel_square(
+            ax,
+            palette.PURPLE,
+            2.0,
+            (0, (4, 2)),
+            "the pixel img[u, v] reads\n(none for u ≥ H: an IndexError)",
         )
     )
     centre = view.animate(
