@@ -42,12 +42,14 @@ def test_thin_matches_keeps_the_true_share():
 
 
 @pytest.mark.parametrize("ratio", [0.75, 0.95, 1.0])
-def test_feature_matches_draws_about_200_lines_in_the_true_share(ratio):
+def test_feature_matches_draws_about_100_lines_in_the_true_share(ratio):
+    from camlab.widgets.image_stitching.matching import MATCH_LINES
+
     d = demos.feature_matches()
     d.set(ratio=ratio)
     s = d.state
     drawn = s["drawn_right"] + s["drawn_wrong"]
-    assert drawn <= 202 and s["drawn_right"] >= 1
+    assert MATCH_LINES == 100 and drawn <= MATCH_LINES + 2 and s["drawn_right"] >= 1
     assert abs(s["drawn_wrong"] / drawn - s["wrong"] / s["matches"]) < 0.02
 
 

@@ -29,6 +29,8 @@ from ..controls import log_slider, monospace
 
 # ----------------------------------------------------------------------------- matches
 
+MATCH_LINES = 100  # feature_matches draws at most about this many match lines
+
 
 @register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
 def feature_matches() -> Demo:
@@ -37,8 +39,9 @@ def feature_matches() -> Demo:
     Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
     the true homography (green within 2 px, red otherwise:
     :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
-    but at most about 200 are drawn (:func:`camlab.plotting.stitching.thin_matches`): 1 in k of
-    each kind, so the picture keeps the true share of right matches.
+    but at most about :data:`MATCH_LINES` (100) are drawn
+    (:func:`camlab.plotting.stitching.thin_matches`): 1 in k of each kind, so the picture keeps
+    the true share of right matches.
 
     Returns
     -------
@@ -60,10 +63,9 @@ def feature_matches() -> Demo:
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
-    art["good"].set_zorder(
-        art["bad"].get_zorder() + 0.1
-    )  # green over red, in a redraw and a live frame
-    view.animate(art["bad"], art["good"])  # the images and keypoints stay: only the lines move
+    # the images and keypoints stay, only the lines move; red over green (draw_matches' z-order),
+    # in a redraw and a live frame
+    view.animate(art["good"], art["bad"])
     draw_keypoints(
         ax,
         feats[i].points,
@@ -85,9 +87,9 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        # at most about 200 lines (speed, and the photos stay visible): 1 in k of each kind, so the
+        # at most about MATCH_LINES lines (the photos stay visible): 1 in k of each kind, so the
         # drawn share of right matches is the true one
-        show, every = thin_matches(good, 200)
+        show, every = thin_matches(good, MATCH_LINES)
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
