@@ -1,4 +1,4 @@
-"""Lesson 09, exercise 4: gain compensation's normal equations (gains_from_overlaps) and the slips its diagnosis names."""
+"""Lesson 09, exercise 3: gain compensation's normal equations (gains_from_overlaps) and the slips its diagnosis names."""
 
 from __future__ import annotations
 
