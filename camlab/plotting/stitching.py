@@ -217,9 +217,9 @@ def draw_matches(
     g = np.ones(len(seg), bool) if good is None else np.asarray(good, bool)
     from matplotlib import patheffects
 
-    # thin green lines with a hairline dark edge (0.4 pt a side, where palette.halo gives 1 pt), so
-    # they read on the photo and the photo shows between them; the fewer red ones wider, with a
-    # full edge, and on top, so a wrong match is never buried under the right ones
+    # thin lines with a hairline dark edge (0.4 pt a side, where palette.halo gives 1 pt), so they
+    # read on the photo and the photo shows between them; red a little wider and on top, so a wrong
+    # match is never buried under the right ones, yet green keeps its weight where both are many
     lc_good = LineCollection(
         seg[g],
         colors=palette.GREEN,
@@ -230,8 +230,8 @@ def draw_matches(
     lc_bad = LineCollection(
         seg[~g],
         colors=palette.RED,
-        linewidths=1.2,
-        path_effects=palette.halo(0.8, "black"),
+        linewidths=1.0,
+        path_effects=[patheffects.withStroke(linewidth=1.8, foreground="black")],
         zorder=2.1,
     )
     ax.add_collection(lc_good)
