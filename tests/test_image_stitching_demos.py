@@ -42,12 +42,14 @@ def test_thin_matches_keeps_the_true_share():
 
 
 @pytest.mark.parametrize("ratio", [0.75, 0.95, 1.0])
-def test_feature_matches_draws_about_200_lines_in_the_true_share(ratio):
+def test_feature_matches_draws_about_100_lines_in_the_true_share(ratio):
+    from camlab.widgets.image_stitching.matching import MATCH_LINES
+
     d = demos.feature_matches()
     d.set(ratio=ratio)
     s = d.state
     drawn = s["drawn_right"] + s["drawn_wrong"]
-    assert drawn <= 202 and s["drawn_right"] >= 1
+    assert MATCH_LINES == 100 and drawn <= MATCH_LINES + 2 and s["drawn_right"] >= 1
     assert abs(s["drawn_wrong"] / drawn - s["wrong"] / s["matches"]) < 0.02
 
 
@@ -74,6 +76,22 @@ def test_ransac_demo_threshold():
     assert (
         not d.state["accepted"] and d.state["inliers"] < 0.3 * at3
     )  # tighter than the features' noise: the fit starves
+
+
+def test_ransac_histogram_green_holds_every_inlier():
+    """At the slider's lowest threshold the inliers sit in the clipped first bar: it must be green."""
+    d = demos.ransac_registration()
+    for threshold in (0.02, 0.05, 3.0, 40.0):
+        d.set(threshold=threshold)
+        assert d.state["inliers"] > 0
+        assert d.state["histogram_inliers"] == d.state["inliers"], threshold
+    d.set(threshold=0.02)
+    inl_bars, out_bars = d.view._animated[0].figure.axes[1].containers
+    assert inl_bars[0].get_height() > 0  # the hatched "< 0.02 px" bar shows its inliers in green
+    # a straddling bin shows both kinds: the grey part starts where the green ends
+    assert all(
+        abs(o.get_y() - i.get_height()) < 1e-12 for i, o in zip(inl_bars, out_bars, strict=True)
+    )
 
 
 def image_fills_the_axes(d) -> bool:

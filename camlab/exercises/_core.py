@@ -256,6 +256,10 @@ def _fmt_like(value: Any, like: Any) -> str:
             inner = [_fmt_like(v, w) for v, w in zip(value, like, strict=True)]
             opening, closing = ("[", "]") if isinstance(value, list) else ("(", ")")
             return opening + ", ".join(inner) + closing
+    if isinstance(value, np.ndarray) and value.dtype.kind in "biu":
+        return _fmt(
+            value
+        )  # an integer answer prints as integers, 0 not 0.0: its dtype may be the slip
     if isinstance(value, np.ndarray) and isinstance(like, np.ndarray) and value.shape == like.shape:
         decimals = _decimals(value, like)
         if decimals is not None:

@@ -1,4 +1,4 @@
-"""Lesson 09, exercise 3: the focal lengths from a rotation-only homography (focal_from_rotation_homography).
+"""Lesson 09, exercise 4: the focal lengths from a rotation-only homography (focal_from_rotation_homography).
 
 H maps a photo taken with focal f_from to one taken with f_to after the camera turned (Brown & Lowe's
 setting: each photo its own focal). The rows of the centred H give f_from, the columns f_to, so every one

@@ -1,4 +1,4 @@
-"""Lesson 09, exercise 4: gain compensation's normal equations (gains_from_overlaps) and the slips its diagnosis names."""
+"""Lesson 09, exercise 3: gain compensation's normal equations (gains_from_overlaps) and the slips its diagnosis names."""
 
 from __future__ import annotations
 
@@ -80,6 +80,12 @@ def _gains_cases():
             [(0, 1, 15000, 100.0), (1, 2, 9000, 130.0), (2, 3, 11000, 80.0), (0, 3, 4000, 115.0)],
             seed=2,
         ),  # a loop of four
+        # night photos, means near 10 grey levels: the data weigh 2 I^2 / sigma_N^2 = 2 per pixel, the
+        # prior 1, so a slip in either's weight moves the gains by percents (on the brighter inputs
+        # above, where the prior mainly fixes the overall scale, by parts in a thousand)
+        _scene(
+            [1.0, 1.3, 0.9], [(0, 1, 6000, 9.0), (1, 2, 5000, 12.0), (0, 2, 3000, 10.0)], seed=3
+        ),
     ]
 
 
@@ -103,7 +109,8 @@ def _solve(
 
     ``diag_in_b`` zeroes N_ii in A but leaves it in b; ``coupling_sq`` writes the coupling with I * I
     (I_ij^2) where I * I.T (I_ij I_ji) belongs. ``prior`` weighs the prior (1 - g_i)^2 / sigma_g^2 by
-    N_ij ("N", right), by 1 per overlapping image ("count") or by 1 per image ("one").
+    N_ij ("N", right), by 1 per overlapping image ("count"), by 1 per image ("one") or by N_ij for
+    j > i only ("upper": each pair summed once, its prior on the first image only).
     """
     N = np.array(N, dtype=float)
     own = np.diag(N).copy()
@@ -111,9 +118,12 @@ def _solve(
         np.fill_diagonal(N, 0)
     s2 = sigma_n**2 if square else sigma_n
     A = sign * N * factor * M * (M if coupling_sq else M.T) / s2
-    weight = {"N": N, "count": (N > 0).astype(float), "one": np.eye(len(N))}[
-        prior
-    ]  # the prior's weight per (i, j)
+    weight = {
+        "N": N,
+        "count": (N > 0).astype(float),
+        "one": np.eye(len(N)),
+        "upper": np.triu(N, 1),
+    }[prior]  # the prior's weight per (i, j)
     A[np.diag_indices(len(N))] = (N * factor * M**2 / s2).sum(axis=1) + (
         weight.sum(axis=1) / sigma_g**2 if prior_a else 0
     )
@@ -200,6 +210,14 @@ _GAIN_SLIPS = (
         "added 1 / sigma_g^2 per overlap, so the prior is thousands of times too weak.",
     ),
     Mistake(
+        "pairs once, prior on the first",
+        lambda c: _solve(c.N, c.M, prior="upper"),
+        "you summed each pair once (j > i) and gave its prior to the first image only, so image i's prior "
+        "counts only its overlaps with later images (the last image has none). e sums over i != j: the pair "
+        "appears as (i, j) with the prior (1 - g_i)^2 and as (j, i) with (1 - g_j)^2, so every image's "
+        "prior is weighted by all its overlaps, j < i included.",
+    ),
+    Mistake(
         "one prior per image",
         lambda c: _solve(c.N, c.M, prior="one"),
         "the prior is weighted by the overlap size N_ij and summed over j, like the data term: it adds "
@@ -283,11 +301,22 @@ def _gains_diagnosis(args, got, expected, run=None) -> str:
         shown = [m for m in shown if first_mistake([m], ctx, other, _same)] or shown
     if shown:
         return shown[0].hint
+    N, M = _context(args, expected).N, _context(args, expected).M
     return (
-        "build A and b from section 5's equation, one row per image: A[i, i] = sum_j N_ij (2 I_ij^2 / sigma_N^2 "
-        "+ 1 / sigma_g^2), A[i, j] = -2 N_ij I_ij I_ji / sigma_N^2, b_i = sum_j N_ij / sigma_g^2 (j != i), "
-        "then np.linalg.solve(A, b)."
+        f"your gains do not minimise section 5's error: e(g) = {_energy(N, M, g):.6g} at your g, "
+        f"{_energy(N, M, expected):.6g} at the minimum. Check each term of d e / d g_i = 0 against the "
+        "derivative of e = 1/2 sum over i != j of N_ij ((g_i I_ij - g_j I_ji)^2 / sigma_N^2 + (1 - g_i)^2 "
+        "/ sigma_g^2): which terms carry g_i, which g_j, and which none (those go to b)."
     )
+
+
+def _energy(N, M, g) -> float:
+    """Section 5's error e(g) (sigma_N = 10, sigma_g = 1), over i != j; N's diagonal is ignored."""
+    N = np.array(N, dtype=float)
+    np.fill_diagonal(N, 0)
+    g = np.asarray(g, dtype=float)
+    data = (g[:, None] * M - g[None, :] * M.T) ** 2 / SIGMA_N**2
+    return float(0.5 * np.sum(N * (data + (1 - g[:, None]) ** 2 / SIGMA_G**2)))
 
 
 def _gains_exception_hint(exc: Exception, args: tuple) -> str:
@@ -352,6 +381,8 @@ register_exercise(
             (_variant("data once, prior twice"), "a quarter"),
             (_variant("prior without N_ij"), "added 1 / sigma_g^2 per overlap"),
             (_variant("one prior per image"), "one 1 / sigma_g^2 per image"),
+            (_variant("pairs once, prior on the first"), "summed each pair once"),
+            (lambda N, M: np.diag(np.asarray(M, float)) / 100.0, "do not minimise"),
             (_variant("sigma not squared"), "not sigma_N (10)"),
             (_variant("sigma in 0-1 units"), "grey levels 0-255"),
             (_variant("diagonal kept"), "own size, not an overlap"),

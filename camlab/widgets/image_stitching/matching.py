@@ -29,6 +29,8 @@ from ..controls import log_slider, monospace
 
 # ----------------------------------------------------------------------------- matches
 
+MATCH_LINES = 100  # feature_matches draws at most about this many match lines
+
 
 @register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
 def feature_matches() -> Demo:
@@ -37,8 +39,9 @@ def feature_matches() -> Demo:
     Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
     the true homography (green within 2 px, red otherwise:
     :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
-    but at most about 200 are drawn (:func:`camlab.plotting.stitching.thin_matches`): 1 in k of
-    each kind, so the picture keeps the true share of right matches.
+    but at most about :data:`MATCH_LINES` (100) are drawn
+    (:func:`camlab.plotting.stitching.thin_matches`): 1 in k of each kind, so the picture keeps
+    the true share of right matches.
 
     Returns
     -------
@@ -60,10 +63,9 @@ def feature_matches() -> Demo:
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
-    art["good"].set_zorder(
-        art["bad"].get_zorder() + 0.1
-    )  # green over red, in a redraw and a live frame
-    view.animate(art["bad"], art["good"])  # the images and keypoints stay: only the lines move
+    # the images and keypoints stay, only the lines move; red over green (draw_matches' z-order),
+    # in a redraw and a live frame
+    view.animate(art["good"], art["bad"])
     draw_keypoints(
         ax,
         feats[i].points,
@@ -85,9 +87,9 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        # at most about 200 lines (speed, and the photos stay visible): 1 in k of each kind, so the
+        # at most about MATCH_LINES lines (the photos stay visible): 1 in k of each kind, so the
         # drawn share of right matches is the true one
-        show, every = thin_matches(good, 200)
+        show, every = thin_matches(good, MATCH_LINES)
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
@@ -190,12 +192,13 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
 def _residual_axes(view: FigureView, ax_e) -> tuple:
     """The histogram panel of :func:`ransac_registration`.
 
-    The verdict text, one bar per bin of :data:`_RESIDUAL_BINS` (the end bars hatched) and the
-    threshold line, registered with ``view`` in that order and returned.
+    The verdict text, two stacked bars per bin of :data:`_RESIDUAL_BINS` (the inliers green at
+    the bottom, the outliers grey on top; the end bars hatched) and the threshold line,
+    registered with ``view`` in that order and returned.
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="matches per bin (tallest = 1)\ngreen: within the threshold",
+        ylabel="matches per bin (tallest = 1)\ngreen: inliers, grey: outliers",
         xscale="log",
         xlim=(
             0.014,
@@ -212,16 +215,35 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
         "residuals under H (dashed: threshold)\nhatched end bars: < 0.02 px and > 300 px",
         fontsize=9,
     )
-    bins = _RESIDUAL_BINS
-    bars = ax_e.bar(
-        bins[:-1], np.zeros(len(bins) - 1), width=np.diff(bins), align="edge", color="0.6"
-    )
-    for end in (bars[0], bars[-1]):  # they also hold everything beyond the axis: marked, not hidden
+    bins, zeros = _RESIDUAL_BINS, np.zeros(len(_RESIDUAL_BINS) - 1)
+    # each bin stacked by what RANSAC decided: a bin that straddles the threshold shows both kinds
+    inl_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color=palette.GREEN)
+    out_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color="0.6")
+    for end in (out_bars[0], out_bars[-1]):  # they also hold everything beyond the axis: marked
         end.set(hatch="////", edgecolor="0.25", facecolor="0.75")
-    view.animate(*bars)
+    for end in (inl_bars[0], inl_bars[-1]):
+        end.set(hatch="////", edgecolor="0.25")
+    view.animate(*inl_bars, *out_bars)
     # below the verdict (which sits in the top third, over no bar): the line never crosses its text
     thr_line = view.animate(ax_e.axvline(3, ymax=1.08 / 1.55, color="black", ls="--", lw=1.5))
-    return verdict, bars, thr_line
+    return verdict, (inl_bars, out_bars), thr_line
+
+
+def _set_residual_bars(bars: tuple, res: np.ndarray, inliers: np.ndarray) -> int:
+    """Stack each bin of :data:`_RESIDUAL_BINS`: the ``inliers`` of residuals ``res`` green, the rest grey on top.
+
+    Residuals beyond the axis are counted in the end bins. Returns the number of matches the
+    green bars hold (every inlier, so the picture agrees with the verdict's count).
+    """
+    clipped = np.clip(res, 0.0201, 449)
+    n_in, _ = np.histogram(clipped[inliers], _RESIDUAL_BINS)
+    n_out, _ = np.histogram(clipped[~inliers], _RESIDUAL_BINS)
+    top = max((n_in + n_out).max(), 1)
+    for b_in, b_out, a, o in zip(*bars, n_in, n_out, strict=True):
+        b_in.set_height(a / top)
+        b_out.set_y(a / top)
+        b_out.set_height(o / top)
+    return int(n_in.sum())
 
 
 def _registration_figure(view: FigureView, s, imgs, i: int, j: int) -> SimpleNamespace:
@@ -292,7 +314,8 @@ def ransac_registration() -> Demo:
         threshold and the verdict) and ``state`` (``inliers`` their count, ``corner_error``
         the worst corner of the estimated frame against the true one in px, NaN without an
         H, ``accepted`` whether the pair passes, and, when RANSAC finds an H,
-        ``false_inliers`` the inliers the truth rejects).
+        ``false_inliers`` the inliers the truth rejects; ``histogram_inliers`` the matches
+        the histogram's green bars hold, every inlier).
 
     References
     ----------
@@ -321,7 +344,8 @@ def ransac_registration() -> Demo:
             art.inl.set_data([], [])
             art.outl.set_data(m.dst[:, 0], m.dst[:, 1])
             art.est_box.set_data([], [])
-            state.update(inliers=0, corner_error=float("nan"), accepted=False)
+            _set_residual_bars(art.bars, np.zeros(0), np.zeros(0, bool))  # no H, no residuals
+            state.update(inliers=0, corner_error=float("nan"), accepted=False, histogram_inliers=0)
             readout.value = monospace(r.reason)
             art.verdict.set_text(f"{len(m.src)} matches: no homography\n{r.reason.split(';')[0]}")
             return
@@ -330,20 +354,18 @@ def ransac_registration() -> Demo:
         box = map_points(r.H, np.vstack([corners, corners[:1]]))
         art.est_box.set_data(box[:, 0], box[:, 1])
         res = hg.symmetric_transfer_error(r.H, m.src, m.dst)
-        counts, _ = np.histogram(np.clip(res, 0.0201, 449), _RESIDUAL_BINS)
-        top = max(counts.max(), 1)
-        inside = _RESIDUAL_BINS[1:] <= v["threshold"]  # bins wholly within the threshold: inliers
-        for k, (b, c) in enumerate(zip(art.bars, counts, strict=True)):
-            b.set_height(c / top)
-            end = k in (0, len(counts) - 1)
-            b.set_facecolor(palette.GREEN if inside[k] else ("0.75" if end else "0.6"))
+        green = _set_residual_bars(art.bars, res, r.inliers)
         err = float(
             np.max(np.linalg.norm(map_points(r.H, corners) - map_points(true_H, corners), axis=1))
         )
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         wrong = int((r.inliers & ~good).sum())
         state.update(
-            inliers=int(r.inliers.sum()), corner_error=err, accepted=r.accepted, false_inliers=wrong
+            inliers=int(r.inliers.sum()),
+            corner_error=err,
+            accepted=r.accepted,
+            false_inliers=wrong,
+            histogram_inliers=green,
         )
         verdict, readout.value = _registration_texts(r, len(m.src), wrong, err)
         art.verdict.set_text(verdict)
