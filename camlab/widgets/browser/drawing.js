@@ -181,11 +181,13 @@ export function textLines(ctx, text, style) {
   text.split("\n").forEach((line, i) => label(ctx, line, [style.x, style.baselines[i]], style, style.align, "baseline"));
 }
 
+// A round marker at canvas point (x, y), where Agg stamps it: its draw_markers truncates the
+// position + 0.5 to a whole pixel and centres a round marker (no snapping) in that pixel.
 export function dot(ctx, [x, y], style) {
   if (!Number.isFinite(x) || !Number.isFinite(y)) return;
   ctx.save();
   ctx.beginPath();
-  ctx.arc(x, y, style.size / 2, 0, 2 * Math.PI);
+  ctx.arc(Math.floor(x + 0.5) + 0.5, Math.floor(y + 0.5) + 0.5, style.size / 2, 0, 2 * Math.PI);
   ctx.fillStyle = style.color;
   ctx.fill();
   ctx.lineWidth = style.edgeWidth;
@@ -196,9 +198,11 @@ export function dot(ctx, [x, y], style) {
 
 // A marker path (matplotlib's custom marker: vertices scaled so the largest coordinate is 0.5,
 // times the size) at canvas point `at`, its +x axis along the canvas direction `way`.
+// Placed as dot places a round marker (Agg centres an unsnapped marker in the pixel it stamps).
 export function marker(ctx, at, way, verts, style) {
   const n = Math.hypot(way[0], way[1]);
   if (!(n > 0)) return;
+  at = [Math.floor(at[0] + 0.5) + 0.5, Math.floor(at[1] + 0.5) + 0.5];
   const c = way[0] / n, s = -way[1] / n; // display y runs up, canvas y down
   const k = 0.5 * style.size;
   ctx.save();
