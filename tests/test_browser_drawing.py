@@ -32,7 +32,6 @@ BROWSER_DEMOS = {
     "parallel_lines": "infinity",
     "cross_ratio_invariance": "cross-ratio",
     "vanishing_points": "horizon",
-    "lift_to_plane": "origin",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 

@@ -237,32 +237,3 @@ def test_the_vanishing_points_arithmetic_equals_the_demo():
     ]
     assert not wrong and any(not v for _, v in titles), f"horizon notes differ: {wrong[:3]}"
     print(f"vanishing_points: worst relative error {worst:.2e}")
-
-
-def test_the_lift_to_plane_ray_and_note_equal_the_demo():
-    from camlab.plotting.plane import arrow_placement
-
-    rng = np.random.default_rng(66)
-    xy = np.round(rng.uniform(-1.5, 1.5, (CASES, 2)) / 0.05) * 0.05
-    w = np.round(rng.uniform(-0.3, 1.0, CASES).clip(0) / 0.05) * 0.05  # the slider: 0 to 1, often 0
-    rays = [*np.column_stack([xy, w])]
-    rays += [
-        np.array(r, dtype=float) for r in ([0, 0, 0], [1, 0.5, 0], [1.5, 1.5, 0.05], [0, 0, 1])
-    ]
-    dirs = [
-        arrow_placement(r, (-2.0, 2.0), (-2.0, 2.0)).direction if r.any() else np.zeros(2)
-        for r in rays
-    ]
-    calls = [("liftRay", [r.tolist(), 3.0, 2.0]) for r in rays]
-    calls += [("liftNote", [r.tolist(), d.tolist()]) for r, d in zip(rays, dirs, strict=True)]
-    out = run_js(calls)
-    n = len(rays)
-    worst = max(
-        assert_twins(js, twins.lift_ray(r, 3.0, 2.0), "liftRay")
-        for js, r in zip(out[:n], rays, strict=True)
-    )
-    notes = [twins.lift_note(r, d) for r, d in zip(rays, dirs, strict=True)]
-    wrong = [(js, py) for js, py in zip(out[n:], notes, strict=True) if js != py]
-    assert not wrong, f"JS and Python notes differ: {wrong[:3]}"
-    assert len(set(notes)) == 4, f"not every note was tried: {set(notes)}"
-    print(f"lift_to_plane: worst relative error {worst:.2e}")

@@ -698,18 +698,3 @@ export function horizonNote(hz, visible, title) {
   const v = Math.abs(hz[1]) > 1e-12 ? -hz[2] / hz[1] : NaN;
   return `horizon above the image: v = ${Number.isFinite(v) ? formatFixed(v, 0) : "nan"} px at u = 0`;
 }
-
-// Twin: camlab.widgets.projective_plane.twins.lift_ray(r, box, w_max): both halves of the ray along
-// r, clipped to |x|, |y| <= box and |w| <= wMax.
-export function liftRay(r, box, wMax) {
-  const reach = Math.min(box / Math.max(Math.abs(r[0]), Math.abs(r[1]), 1e-12), wMax / Math.max(Math.abs(r[2]), 1e-12));
-  const end = r.map((c) => reach * c);
-  return [end.map((c) => -c), end];
-}
-
-// Twin: camlab.widgets.projective_plane.twins.lift_note(r, direction).
-export function liftNote(r, direction) {
-  if (r.every((c) => c === 0)) return "(x, y, w) = (0, 0, 0) is no ray: it names no point";
-  if (Math.abs(r[2]) < 1e-12) return "w = 0: an ideal point, the direction ±(x, y)\n(no sign: the arrow could point either way)";
-  return direction[0] === 0 && direction[1] === 0 ? "" : "(x/w, y/w) is off this view: the arrow points to it";
-}

@@ -21,7 +21,6 @@ __all__ = [
     "collection_style",
     "cross_ratio_scene",
     "duality_scene",
-    "lift_scene",
     "parallel_scene",
     "plane_panel",
     "scatter_style",
@@ -283,53 +282,5 @@ def vanishing_scene(art: Mapping[str, Any], world: Mapping[str, Any]) -> dict:
             vz=marker_style(art["vz_dot"], pt),
             vx=marker_style(art["vx_dot"], pt),
             note=text_scene(art["note"]),
-        ),
-    )
-
-
-def lift_scene(art: Mapping[str, Any], world: Mapping[str, Any]) -> dict:
-    """What ``projective_plane.js`` needs to draw ``lift_to_plane`` as matplotlib draws it.
-
-    The 3-D panel's view stays put, so its projection (the 4 x 4 ``M`` of the last draw, then the
-    axes' 2-D map) is sent once, like any panel's map.
-
-    Parameters
-    ----------
-    art : mapping
-        The figure's parts: ``ax3`` (homogeneous space), ``ax2`` (the plane w = 1) and the moving
-        artists ``ray``, ``scaled``, ``hit`` (3-D lines), ``dot`` and ``note`` (a text on a box).
-    world : mapping
-        ``box`` and ``w_max`` (the 3-D box that holds the ray), ``arrow`` (the arrowhead marker's
-        closed path, pointing up) and ``ideal_note`` (the note of two lines, for its layout).
-
-    Returns
-    -------
-    dict
-        The scene (JSON).
-    """
-    ax3, ax2, note = art["ax3"], art["ax2"], art["note"]
-    pt = ax2.figure.dpi / 72.0
-    path = np.asarray(world["arrow"], dtype=float)[:-1]
-    shown = note.get_text()
-    layouts = []
-    for text in (
-        "one line",
-        world["ideal_note"],
-    ):  # the baselines of a note of one and of two lines
-        note.set_text(text)
-        layouts.append(boxed_text_scene(note))
-    note.set_text(shown)
-    return dict(
-        box=float(world["box"]),
-        wMax=float(world["w_max"]),
-        space=dict(toPixels=to_canvas_pixels(ax3), box=axes_box(ax3), M=np.asarray(ax3.M).tolist()),
-        plane=plane_panel(ax2),
-        arrow=np.column_stack([path[:, 1], -path[:, 0]]).tolist(),
-        styles=dict(
-            ray=line_style(art["ray"], pt),
-            scaled=marker_style(art["scaled"], pt),
-            hit=marker_style(art["hit"], pt),
-            dot=marker_style(art["dot"], pt),
-            notes=layouts,
         ),
     )

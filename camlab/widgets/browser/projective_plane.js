@@ -1,4 +1,4 @@
-import { arrowPlacement, clipLine, crossRatioCaption, crossRatioHomography, drawnVanishingPoint, dualityCaption, horizonLine, horizonNote, labelOffset, lineAtAngle, mapPoints, meetOrNull, meetWCurve, normalLine, normalisePoint, polylineData, rolledView, liftNote, liftRay } from "./geometry.js";
+import { arrowPlacement, clipLine, crossRatioCaption, crossRatioHomography, drawnVanishingPoint, dualityCaption, horizonLine, horizonNote, labelOffset, lineAtAngle, mapPoints, meetOrNull, meetWCurve, normalLine, normalisePoint, polylineData, rolledView } from "./geometry.js";
 // (one line: esm_source drops the lines that start with "import")
 // Lesson 06's demos drawn in the browser: each drawer is the twin of its demo's update in
 // camlab/widgets/projective_plane (the arithmetic in geometry.js, each function's numpy twin named there).
@@ -115,41 +115,4 @@ export function drawVanishingPoints(ctx, scene, v) {
   const note = st.note;
   textLines(ctx, horizonNote(hz, visible, scene.title), { ...note, color: visible ? note.color : scene.noteColor });
   return { vpZ, vpX, hz };
-}
-
-// mplot3d's projection of 3-D points by the axes' 4 x 4 M (the last full draw's): (x, y) = (M X)[:2] / w.
-function project3d(M, points) {
-  return points.map(([x, y, z]) => {
-    const h = M.map((row) => row[0] * x + row[1] * y + row[2] * z + row[3]);
-    return [h[0] / h[3], h[1] / h[3]];
-  });
-}
-
-// Twin: camlab.widgets.projective_plane.lift_to_plane's update: the ray through 0 along (x, y, w), the
-// scaled point on it and where it meets w = 1 (3-D), the point on the plane (an arrowhead at the edge
-// when it is off the view or ideal) and the note under it.
-export function drawLiftToPlane(ctx, scene, v) {
-  const r = [v.x, v.y, v.w], lam = v.scale;
-  const ideal = Math.abs(r[2]) < 1e-12;
-  const st = scene.styles, space = scene.space, plane = scene.plane;
-  const onPlane = !ideal && Math.max(Math.abs(r[0] / r[2]), Math.abs(r[1] / r[2])) <= scene.box;
-  inPanel(ctx, space, (px) => {
-    const to = (pts) => px(project3d(space.M, pts));
-    polyline(ctx, to(liftRay(r, scene.box, scene.wMax)), st.ray);
-    if (Math.abs(lam) > 1e-12) dot(ctx, to([r.map((c) => lam * c)])[0], st.scaled);
-    if (onPlane) dot(ctx, to([r.map((c) => c / r[2])])[0], st.hit);
-  });
-  let direction = [0, 0];
-  if (r.some((c) => c !== 0)) {
-    const place = arrowPlacement(r, plane.xlim, plane.ylim);
-    direction = place.direction;
-    inPanel(ctx, plane, (px) => {
-      const [at, ahead] = px([place.position, [place.position[0] + direction[0], place.position[1] + direction[1]]]);
-      if (direction[0] === 0 && direction[1] === 0) dot(ctx, at, st.dot);
-      else marker(ctx, at, [ahead[0] - at[0], ahead[1] - at[1]], scene.arrow, st.dot);
-    });
-  }
-  const note = liftNote(r, direction);
-  if (note) boxedText(ctx, note, st.notes[note.split("\n").length - 1]);
-  return note;
 }

@@ -25,8 +25,6 @@ __all__ = [
     "duality_caption",
     "horizon_note",
     "label_offset",
-    "lift_note",
-    "lift_ray",
     "line_at_angle",
     "meet_or_none",
     "meet_w_curve",
@@ -320,46 +318,3 @@ def horizon_note(hz: np.ndarray, visible: bool, title: str) -> str:
         return title
     v_horizon = float(-hz[2] / hz[1]) if abs(hz[1]) > 1e-12 else float("nan")
     return f"horizon above the image: v = {v_horizon:.0f} px at u = 0"
-
-
-def lift_ray(r: np.ndarray, box: float, w_max: float) -> np.ndarray:
-    """Both halves of the ray through 0 along ``r``, clipped to |x|, |y| <= ``box`` and |w| <= ``w_max``.
-
-    Parameters
-    ----------
-    r : (3,) ndarray
-        The ray's direction (x, y, w).
-    box, w_max : float
-        The 3-D box that holds the ray.
-
-    Returns
-    -------
-    (2, 3) ndarray
-        The ray's ends, ``-end`` and ``end`` (both 0 for r = 0, which is no ray).
-    """
-    reach = min(box / max(abs(r[0]), abs(r[1]), 1e-12), w_max / max(abs(r[2]), 1e-12))
-    end = reach * np.asarray(r, dtype=float)
-    return np.array([-end, end])
-
-
-def lift_note(r: np.ndarray, direction: np.ndarray) -> str:
-    """The note under :func:`~camlab.widgets.projective_plane.lift_to_plane`'s plane w = 1.
-
-    Parameters
-    ----------
-    r : (3,) ndarray
-        The ray's direction (x, y, w).
-    direction : (2,) ndarray
-        :func:`camlab.plotting.plane.arrow_placement`'s direction for r: zero when (x/w, y/w) is
-        drawn where it is.
-
-    Returns
-    -------
-    str
-        What the plane shows: an ideal point (w = 0), a point off the view, or nothing to add.
-    """
-    if not np.any(r):
-        return "(x, y, w) = (0, 0, 0) is no ray: it names no point"
-    if abs(r[2]) < 1e-12:
-        return "w = 0: an ideal point, the direction ±(x, y)\n(no sign: the arrow could point either way)"
-    return "" if not np.any(direction) else "(x/w, y/w) is off this view: the arrow points to it"
