@@ -28,6 +28,10 @@ BROWSER_DEMOS = {
     "similar_triangles": "camera obscura",
     "three_cameras": "orthographic",
     "dolly_zoom": "zooming",
+    "point_line_duality": "incidence",
+    "parallel_lines": "infinity",
+    "cross_ratio_invariance": "cross-ratio",
+    "vanishing_points": "horizon",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
@@ -63,6 +67,10 @@ def drawn_as_matplotlib_draws_it(name: str, live: np.ndarray, values: dict) -> f
     demo.set(**values)
     ref = demo.view.pixels()[..., :3].astype(float)
     static = np.asarray(demo.view._background)[..., :3].astype(float)
+    if len(static) < len(
+        ref
+    ):  # a 413.99999-px figure: Agg's buffer has 414 rows, its blit region rows 1-413
+        static = np.concatenate([ref[: len(ref) - len(static)], static])
     for text in (a for a in demo.view._animated if isinstance(a, Text) and a.get_text()):
         text.set_color("none")
         if text.get_bbox_patch() is not None:

@@ -125,6 +125,54 @@ class ArrowPlacement(NamedTuple):
     direction: np.ndarray
 
 
+def arrow_placement(
+    point_h: np.ndarray,
+    xlim: tuple[float, float],
+    ylim: tuple[float, float],
+    anchor: np.ndarray | None = None,
+) -> ArrowPlacement:
+    """Where to draw a point that may be outside the box ``xlim`` x ``ylim`` or ideal.
+
+    :func:`arrow_to_infinity` for a box given by its limits: the twin of ``arrowPlacement`` in
+    ``camlab/widgets/browser/geometry.js``, which the browser-drawn demos of lesson 06 run.
+
+    Parameters
+    ----------
+    point_h : (3,) ndarray
+        The point, homogeneous ``(x, y, w)``; ``w = 0`` for an ideal point.
+    xlim, ylim : (lo, hi)
+        The box (data units); ``ylim`` in either order (inverted axes give it high first).
+    anchor : (2,) ndarray or None
+        Where the arrow starts from; None for the box's centre.
+
+    Returns
+    -------
+    ArrowPlacement
+        ``position`` (where to draw) and ``direction`` (unit vector; zero when the point is
+        drawn where it is).
+    """
+    x, y, w = np.asarray(point_h, dtype=float)
+    (x0, x1), (y0, y1) = xlim, sorted(ylim)
+    centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    start = centre if anchor is None else np.asarray(anchor, dtype=float)
+    if w != 0:
+        p = np.array([x / w, y / w])
+        if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
+            return ArrowPlacement(p, np.zeros(2))
+        direction = p - start
+    else:
+        direction = np.array([x, y])
+        if anchor is not None and np.dot(direction, start - centre) < 0:
+            direction = -direction  # an ideal point lies both ways: point to the nearer edge
+    direction = direction / np.linalg.norm(direction)
+    half = np.array([(x1 - x0), (y1 - y0)]) / 2 * 0.9
+    lo, hi = centre - half, centre + half
+    with np.errstate(divide="ignore", invalid="ignore"):
+        steps = np.where(direction > 0, (hi - start) / direction, (lo - start) / direction)
+    s = max(0.0, float(np.min(steps[np.abs(direction) > 1e-12])))
+    return ArrowPlacement(start + s * direction, direction)
+
+
 def arrow_to_infinity(
     point_h: np.ndarray, ax: Axes, anchor: np.ndarray | None = None
 ) -> ArrowPlacement:
@@ -151,29 +199,11 @@ def arrow_to_infinity(
         ``position`` (where to draw) and ``direction`` (unit vector; zero when the point is
         drawn where it is).
     """
-    x, y, w = np.asarray(point_h, dtype=float)
-    (x0, x1), (y0, y1) = ax.get_xlim(), sorted(ax.get_ylim())
-    centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
-    start = centre if anchor is None else np.asarray(anchor, dtype=float)
-    if w != 0:
-        p = np.array([x / w, y / w])
-        if x0 <= p[0] <= x1 and y0 <= p[1] <= y1:
-            return ArrowPlacement(p, np.zeros(2))
-        direction = p - start
-    else:
-        direction = np.array([x, y])
-        if anchor is not None and np.dot(direction, start - centre) < 0:
-            direction = -direction  # an ideal point lies both ways: point to the nearer edge
-    direction = direction / np.linalg.norm(direction)
-    half = np.array([(x1 - x0), (y1 - y0)]) / 2 * 0.9
-    lo, hi = centre - half, centre + half
-    with np.errstate(divide="ignore", invalid="ignore"):
-        steps = np.where(direction > 0, (hi - start) / direction, (lo - start) / direction)
-    s = max(0.0, float(np.min(steps[np.abs(direction) > 1e-12])))
-    return ArrowPlacement(start + s * direction, direction)
+    return arrow_placement(point_h, ax.get_xlim(), ax.get_ylim(), anchor)
 
 
-_ARROW = np.array([[0.0, 1.0], [-0.55, -0.7], [0.0, -0.3], [0.55, -0.7], [0.0, 1.0]])
+ARROW_PATH = np.array([[0.0, 1.0], [-0.55, -0.7], [0.0, -0.3], [0.55, -0.7], [0.0, 1.0]])
+"""The arrowhead of :func:`arrow_marker`, pointing up (+y), closed (its last vertex is its first)."""
 
 
 def arrow_marker(direction: np.ndarray, ax: Axes):
@@ -202,4 +232,4 @@ def arrow_marker(direction: np.ndarray, ax: Axes):
     if ax.yaxis_inverted():
         dy = -dy
     angle = np.degrees(np.arctan2(dy, dx)) - 90.0  # the path points up (+y) at angle 0
-    return MarkerStyle(Path(_ARROW), transform=Affine2D().rotate_deg(angle))
+    return MarkerStyle(Path(ARROW_PATH), transform=Affine2D().rotate_deg(angle))

@@ -56,6 +56,7 @@ MODULES = (
     "similar_triangles.js",
     "three_cameras.js",
     "dolly_zoom.js",
+    "projective_plane.js",
     "widget.js",
 )
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
@@ -125,7 +126,8 @@ def canvas_height(fig: Any) -> int:
 
     Agg draws into a buffer of ``int(height)`` rows and maps display y to row ``int(height) - y``;
     a figure whose height ends in half a pixel (3.35 in at 90 dpi: 301.5 px) would otherwise be
-    drawn half a pixel low in the browser.
+    drawn half a pixel low in the browser. A height within 1e-8 px below a whole number (4.6 in at
+    90 dpi: 413.99999999999994 px) is rounded up, as matplotlib sizes its buffer.
 
     Parameters
     ----------
@@ -137,7 +139,7 @@ def canvas_height(fig: Any) -> int:
     int
         The rows of the figure's Agg buffer (and of the static background).
     """
-    return int(fig.bbox.height)
+    return int(fig.canvas.get_width_height(physical=True)[1])
 
 
 def to_canvas_pixels(ax: Any) -> list[list[float]]:
@@ -244,7 +246,7 @@ class BrowserView(FigureView):
         if self.canvas is None:
             return
         fig = self.fig
-        height, width = np.asarray(self._background).shape[:2]
+        width, height = fig.canvas.get_width_height(physical=True)  # Agg's buffer
         self.canvas.scene = dict(
             scene,
             kind=demo.name,
@@ -347,8 +349,10 @@ def text_style(text: Any, **extra: Any) -> dict:
     renderer = fig.canvas.get_renderer()
     _w, h, d = renderer.get_text_width_height_descent("lp", text.get_fontproperties(), ismath=False)
     px = text.get_fontsize() * fig.dpi / 72.0
+    name = text.get_fontproperties().get_name()  # the font matplotlib found: DejaVu Sans (Mono)
+    generic = "monospace" if "Mono" in name else "sans-serif"
     return dict(
-        font=f"{px:.3f}px 'DejaVu Sans', sans-serif",
+        font=f"{px:.3f}px '{name}', {generic}",
         color=to_hex(text.get_color()),
         ascent=float(h - d),
         descent=float(d),

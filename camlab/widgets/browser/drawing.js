@@ -104,10 +104,25 @@ export function label(ctx, text, at, style, ha = "center", va = "center") {
 
 // matplotlib's "<->" arrow (ArrowStyle.CurveAB) from a to b, canvas pixels: the shaft and an open
 // head at each end, each head's two strokes head_dist = hypot(length, width) long at atan(width /
-// length) to the shaft, its tip drawn back by half the line width / sin of that angle.
+// length) to the shaft, its tip drawn back by half the line width / sin of that angle. The ends are
+// first shrunk by style.shrinkA and style.shrinkB px (annotate's shrinks; 0 when not given).
 export function doubleArrow(ctx, a, b, style) {
-  const len = Math.hypot(b[0] - a[0], b[1] - a[1]);
-  if (!(len > 0)) return;
+  arrowBetween(ctx, a, b, style, true);
+}
+
+// matplotlib's "->" arrow (ArrowStyle.CurveB) from a to b: doubleArrow with the head at b only.
+export function arrow(ctx, a, b, style) {
+  arrowBetween(ctx, a, b, style, false);
+}
+
+function arrowBetween(ctx, from, to, style, both) {
+  const full = Math.hypot(to[0] - from[0], to[1] - from[1]);
+  if (!(full > 0)) return;
+  const ex = (to[0] - from[0]) / full, ey = (to[1] - from[1]) / full;
+  const sa = style.shrinkA || 0, sb = style.shrinkB || 0;
+  if (full <= sa + sb) return;
+  const a = [from[0] + sa * ex, from[1] + sa * ey], b = [to[0] - sb * ex, to[1] - sb * ey];
+  const len = full - sa - sb;
   const headDist = Math.hypot(style.headLength, style.headWidth);
   const cos = style.headLength / headDist, sin = style.headWidth / headDist;
   const back = (0.5 * style.width) / sin;
@@ -121,7 +136,8 @@ export function doubleArrow(ctx, a, b, style) {
       [t[0] + cos * dx - sin * dy, t[1] + sin * dx + cos * dy],
     ];
   };
-  const ha = head(a, b), hb = head(b, a);
+  const hb = head(b, a);
+  const ha = both ? head(a, b) : [null, a, null];
   ctx.save();
   ctx.strokeStyle = style.color;
   ctx.lineWidth = style.width;
@@ -130,7 +146,7 @@ export function doubleArrow(ctx, a, b, style) {
   ctx.beginPath();
   ctx.moveTo(ha[1][0], ha[1][1]);
   ctx.lineTo(hb[1][0], hb[1][1]);
-  for (const h of [ha, hb]) {
+  for (const h of both ? [ha, hb] : [hb]) {
     ctx.moveTo(h[0][0], h[0][1]);
     ctx.lineTo(h[1][0], h[1][1]);
     ctx.lineTo(h[2][0], h[2][1]);
@@ -139,11 +155,39 @@ export function doubleArrow(ctx, a, b, style) {
   ctx.restore();
 }
 
+// textLines on a box as matplotlib's bbox draws it: face style.box, edge style.edge (style.edgeWidth
+// px), padded by style.pad px around the lines' "lp" boxes and the widest line.
+export function boxedText(ctx, text, style) {
+  const lines = text.split("\n");
+  ctx.save();
+  ctx.font = style.font;
+  const width = Math.max(...lines.map((line) => ctx.measureText(line).width));
+  const x0 = style.align === "left" ? style.x : style.align === "right" ? style.x - width : style.x - width / 2;
+  const p = style.pad;
+  const top = style.baselines[0] - style.ascent - p;
+  const bottom = style.baselines[lines.length - 1] + style.descent + p;
+  ctx.fillStyle = style.box;
+  ctx.fillRect(x0 - p, top, width + 2 * p, bottom - top);
+  ctx.strokeStyle = style.edge;
+  ctx.lineWidth = style.edgeWidth;
+  ctx.strokeRect(x0 - p, top, width + 2 * p, bottom - top);
+  ctx.restore();
+  textLines(ctx, text, { ...style, box: null });
+}
+
+// A text of one or more lines at the anchor and baselines matplotlib gave it (scenes' text_scene:
+// style.x, style.baselines, style.align); its words may change, its number of lines not.
+export function textLines(ctx, text, style) {
+  text.split("\n").forEach((line, i) => label(ctx, line, [style.x, style.baselines[i]], style, style.align, "baseline"));
+}
+
+// A round marker at canvas point (x, y), where Agg stamps it: its draw_markers truncates the
+// position + 0.5 to a whole pixel and centres a round marker (no snapping) in that pixel.
 export function dot(ctx, [x, y], style) {
   if (!Number.isFinite(x) || !Number.isFinite(y)) return;
   ctx.save();
   ctx.beginPath();
-  ctx.arc(x, y, style.size / 2, 0, 2 * Math.PI);
+  ctx.arc(Math.floor(x + 0.5) + 0.5, Math.floor(y + 0.5) + 0.5, style.size / 2, 0, 2 * Math.PI);
   ctx.fillStyle = style.color;
   ctx.fill();
   ctx.lineWidth = style.edgeWidth;
@@ -154,9 +198,11 @@ export function dot(ctx, [x, y], style) {
 
 // A marker path (matplotlib's custom marker: vertices scaled so the largest coordinate is 0.5,
 // times the size) at canvas point `at`, its +x axis along the canvas direction `way`.
+// Placed as dot places a round marker (Agg centres an unsnapped marker in the pixel it stamps).
 export function marker(ctx, at, way, verts, style) {
   const n = Math.hypot(way[0], way[1]);
   if (!(n > 0)) return;
+  at = [Math.floor(at[0] + 0.5) + 0.5, Math.floor(at[1] + 0.5) + 0.5];
   const c = way[0] / n, s = -way[1] / n; // display y runs up, canvas y down
   const k = 0.5 * style.size;
   ctx.save();

@@ -386,3 +386,328 @@ export const APPROXIMATIONS = {
 export function rmsText(rms) {
   return rms >= 0.995 ? `RMS ${formatFixed(rms, 1)} px` : `RMS ${formatFixed(rms, 2)} px`;
 }
+
+// ---- lesson 06: the projective plane -------------------------------------------------------------
+
+// Twin: camlab.projective.clip_line(line, xlim, ylim): the two crossings, farthest apart, of the line
+// with the box's edges (within 1e-9 of its span); both rows NaN when it misses the box.
+export function clipLine(line, xlim, ylim) {
+  const [x0, x1] = xlim, [y0, y1] = ylim;
+  const eps = 1e-9 * Math.max(x1 - x0, y1 - y0);
+  const pts = [[1, 0, -x0], [1, 0, -x1], [0, 1, -y0], [0, 1, -y1]]
+    .map((edge) => fromHomogeneous(cross(line, edge)))
+    .filter(([x, y]) => Number.isFinite(x) && Number.isFinite(y) && x >= x0 - eps && x <= x1 + eps && y >= y0 - eps && y <= y1 + eps);
+  const none = [[NaN, NaN], [NaN, NaN]];
+  if (pts.length < 2) return none;
+  let best = -1, pair = [0, 0];
+  pts.forEach((a, i) => pts.forEach((b, j) => {
+    const d = Math.hypot(a[0] - b[0], a[1] - b[1]);
+    if (d > best) [best, pair] = [d, [i, j]];
+  }));
+  if (best <= eps) return none;
+  return pair.map((i) => pts[i].map((c) => c + 0)); // + 0 turns -0 into 0, as numpy's + 0.0
+}
+
+// Twin: camlab.plotting.plane.arrow_placement(point_h, xlim, ylim, anchor): {position, direction}:
+// the point where it is, or an arrow's tip at 90 % of the box's half-extent from its centre,
+// pointing from `anchor` (the centre when null) towards the point (an ideal point: along (x, y)).
+export function arrowPlacement(pointH, xlim, ylim, anchor = null) {
+  const [x, y, w] = pointH;
+  const [x0, x1] = xlim, y0 = Math.min(...ylim), y1 = Math.max(...ylim);
+  const centre = [(x0 + x1) / 2, (y0 + y1) / 2];
+  const start = anchor === null ? centre : anchor;
+  let dir;
+  if (w !== 0) {
+    const p = [x / w, y / w];
+    if (x0 <= p[0] && p[0] <= x1 && y0 <= p[1] && p[1] <= y1) return { position: p, direction: [0, 0] };
+    dir = [p[0] - start[0], p[1] - start[1]];
+  } else {
+    dir = [x, y];
+    if (anchor !== null && dir[0] * (start[0] - centre[0]) + dir[1] * (start[1] - centre[1]) < 0) dir = [-x, -y];
+  }
+  const n = Math.hypot(dir[0], dir[1]);
+  dir = [dir[0] / n, dir[1] / n];
+  const half = [((x1 - x0) / 2) * 0.9, ((y1 - y0) / 2) * 0.9];
+  let s = Infinity;
+  for (const k of [0, 1]) {
+    if (Math.abs(dir[k]) <= 1e-12) continue;
+    s = Math.min(s, ((dir[k] > 0 ? centre[k] + half[k] : centre[k] - half[k]) - start[k]) / dir[k]);
+  }
+  s = Math.max(0, s);
+  return { position: [start[0] + s * dir[0], start[1] + s * dir[1]], direction: dir };
+}
+
+// Twin: Python's format(x, f"+.{digits}f"): the sign always shown (-0 keeps its minus).
+export function plusFixed(x, digits) {
+  const r = formatFixed(x, digits);
+  return r.startsWith("-") ? r : `+${r}`;
+}
+
+// Twin: camlab.widgets.projective_plane.twins.normal_line(angle_deg, distance): (cos t, sin t, -d).
+export function normalLine(angleDeg, distance) {
+  const t = (angleDeg * Math.PI) / 180;
+  return [Math.cos(t), Math.sin(t), -distance];
+}
+
+// Twin: camlab.projective.is_on_line(x, l, tol): |x . l| <= tol |x| |l|.
+export function isOnLine(x, l, tol = 1e-9) {
+  const n = (v) => Math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  return Math.abs(x[0] * l[0] + x[1] * l[1] + x[2] * l[2]) <= tol * n(x) * n(l);
+}
+
+// Twin: camlab.widgets.projective_plane.twins.duality_caption(point, line, xlim, ylim): the line
+// under point_line_duality's panels (p . l, whether p is on l, where l* is when off the dual panel).
+export function dualityCaption(point, line, xlim, ylim) {
+  const incidence = point[0] * line[0] + point[1] * line[1] + point[2] * line[2];
+  const on = isOnLine(point, line, 1e-3);
+  const { direction } = arrowPlacement(line, xlim, ylim);
+  const ld = fromHomogeneous(line);
+  const off = direction[0] !== 0 || direction[1] !== 0
+    ? `; l* = (${formatFixed(ld[0] + 0, 1)}, ${formatFixed(ld[1] + 0, 1)}) is off the dual panel (arrow)`
+    : "";
+  return `p · l = ${plusFixed(incidence, 3)}: ${on ? "p is on l, and l* is on p*" : "p is not on l, and l* is not on p*"}${off}`;
+}
+
+function norm3(v) {
+  return Math.sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+}
+
+// Twin: camlab.widgets.projective_plane.twins.line_at_angle(angle_deg, offset): the join of
+// (0, offset) and (cos t, offset + sin t).
+export function lineAtAngle(angleDeg, offset) {
+  const t = (angleDeg * Math.PI) / 180;
+  return join([0, offset], [Math.cos(t), offset + Math.sin(t)]);
+}
+
+// Twin: camlab.widgets.projective_plane.twins.meet_or_none(l, m): l x m, or null for one line (as
+// camlab.projective.meet refuses it: |l x m| < 1e-9 |l| |m|).
+export function meetOrNull(l, m) {
+  const c = cross(l, m);
+  return norm3(c) / (norm3(l) * norm3(m)) < 1e-9 ? null : c;
+}
+
+// Twin: camlab.widgets.projective_plane.twins.meet_w_curve(l1, angle1, angles, offset, gap): |w| of
+// each unit meet of l1 with the lines through (0, offset) at `angles`; NaN within `gap` degrees of
+// angle1 when (0, offset) lies on l1 (every line meets l1 there but l1 itself).
+export function meetWCurve(l1, angle1, angles, offset, gap = 1.0) {
+  const through = cross(l1, lineAtAngle(angle1, offset)).every((c) => Math.abs(c) < 1e-12);
+  return angles.map((a) => {
+    if (through && Math.abs(a - angle1) < gap) return NaN;
+    const c = cross(l1, lineAtAngle(a, offset));
+    return Math.abs(c[2]) / norm3(c);
+  });
+}
+
+// Twin: camlab.widgets.projective_plane.twins.cross_ratio_homography(h31, h32, angle_deg): a turn by
+// the angle with the perspective row (h31, h32, 1).
+export function crossRatioHomography(h31, h32, angleDeg) {
+  const t = (angleDeg * Math.PI) / 180;
+  return [[Math.cos(t), -Math.sin(t), 0], [Math.sin(t), Math.cos(t), 0], [h31, h32, 1]];
+}
+
+// Twin: camlab.projective.cross_ratio(points) for four collinear Euclidean points A, B, C, D:
+// |l a c| |l b d| / (|l b c| |l a d|), the points scaled to unit length, l the line through the pair
+// farthest apart on the unit sphere, normalised.
+export function crossRatio(points) {
+  const xu = points.map(([x, y]) => {
+    const n = Math.sqrt(x * x + y * y + 1);
+    return [x / n, y / n, 1 / n];
+  });
+  let line = null, best = -1;
+  for (let i = 0; i < 4; i++) {
+    for (let j = i + 1; j < 4; j++) {
+      const c = cross(xu[i], xu[j]);
+      if (norm3(c) > best) [best, line] = [norm3(c), c];
+    }
+  }
+  line = line.map((c) => c / best);
+  const det = (u, v) => det3([line, u, v]);
+  const [a, b, c, d] = xu;
+  return (det(a, c) * det(b, d)) / (det(b, c) * det(a, d));
+}
+
+// Twin: camlab.widgets.projective_plane.twins.ab_over_bc(points): |B - A| / |C - B|.
+export function abOverBc(p) {
+  return Math.hypot(p[1][0] - p[0][0], p[1][1] - p[0][1]) / Math.hypot(p[2][0] - p[1][0], p[2][1] - p[1][1]);
+}
+
+// Twin: camlab.widgets.projective_plane.twins.label_offset(points): 10 points along the normal of
+// the line through the first and last point, on its upper side.
+export function labelOffset(points) {
+  const a = points[0], b = points[points.length - 1];
+  const d = [b[0] - a[0], b[1] - a[1]];
+  const n = Math.hypot(d[0], d[1]);
+  const up = [-d[1] / n, d[0] / n];
+  return up[1] >= 0 ? [10 * up[0], 10 * up[1]] : [-10 * up[0], -10 * up[1]];
+}
+
+// Twin: camlab.widgets.projective_plane.twins.cross_ratio_caption(points, mapped).
+export function crossRatioCaption(points, mapped) {
+  const f = (x) => formatFixed(x, 4);
+  return (
+    `(A, B; C, D): before ${f(crossRatio(points))}, after ${f(crossRatio(mapped))}      ` +
+    `AB / BC: before ${f(abOverBc(points))}, after ${f(abOverBc(mapped))}`
+  );
+}
+
+// Twin: camlab.camera.rotation_x / rotation_y / rotation_z(angle): right-handed, radians.
+export function rotationX(a) {
+  const c = Math.cos(a), s = Math.sin(a);
+  return [[1, 0, 0], [0, c, -s], [0, s, c]];
+}
+export function rotationY(a) {
+  const c = Math.cos(a), s = Math.sin(a);
+  return [[c, 0, s], [0, 1, 0], [-s, 0, c]];
+}
+export function rotationZ(a) {
+  const c = Math.cos(a), s = Math.sin(a);
+  return [[c, -s, 0], [s, c, 0], [0, 0, 1]];
+}
+
+// Twin: numpy.linalg.inv for a 3x3 matrix (its adjugate over its determinant).
+export function inv3(M) {
+  const d = det3(M);
+  const [[a, b, c], [e, f, g], [h, i, j]] = M;
+  return [
+    [(f * j - g * i) / d, (c * i - b * j) / d, (b * g - c * f) / d],
+    [(g * h - e * j) / d, (a * j - c * h) / d, (c * e - a * g) / d],
+    [(e * i - f * h) / d, (b * h - a * i) / d, (a * f - b * e) / d],
+  ];
+}
+
+function transpose(M) {
+  return M[0].map((_, j) => M.map((row) => row[j]));
+}
+
+function apply(M, v) {
+  return M.map((row) => row.reduce((s, m, k) => s + m * v[k], 0));
+}
+
+// Twin: camlab.fixtures.ground_plane_view(pitch, yaw, focal, size, height) (radians, pixels, metres):
+// the ground grid y = height (lines 1 m apart along z from 0.5 m ahead; across at z = 1.4^k, k < 14)
+// seen by the camera R = R_x(pitch) R_y(-yaw) at the origin, K centred; segments clipped at 5 cm.
+export function groundPlaneView(pitch, yaw, focal, size, height = 1.5) {
+  const [w, h] = size;
+  const K = [[focal, 0, (w - 1) / 2], [0, focal, (h - 1) / 2], [0, 0, 1]];
+  const R = matmul(rotationX(pitch), rotationY(-yaw));
+  const alongZ = Array.from({ length: 25 }, (_, i) => [[i - 12, height, 0.5], [i - 12, height, 2000]]);
+  const alongX = Array.from({ length: 14 }, (_, k) => [[-60, height, 1.4 ** k], [60, height, 1.4 ** k]]);
+  const near = 0.05;
+  const segments = [];
+  for (const seg of [...alongZ, ...alongX]) {
+    let [a, b] = seg.map((p) => apply(R, p));
+    if (a[2] < near && b[2] < near) continue;
+    if (a[2] < near || b[2] < near) {
+      const s = (near - a[2]) / (b[2] - a[2]);
+      const cut = a.map((c, i) => c + s * (b[i] - c));
+      if (a[2] < near) a = cut;
+      else b = cut;
+    }
+    segments.push([a, b].map((p) => {
+      const uv = apply(K, p);
+      return [uv[0] / uv[2], uv[1] / uv[2]];
+    }));
+  }
+  const KR = matmul(K, R);
+  return {
+    K, R, segments, nAlongZ: alongZ.length,
+    vpZ: apply(KR, [0, 0, 1]), vpX: apply(KR, [1, 0, 0]),
+    horizon: apply(matmul(transpose(inv3(K)), R), [0, 1, 0]),
+  };
+}
+
+// Twin: camlab.widgets.projective_plane.twins.rolled_view(pitch, yaw, roll, focal, size) (degrees):
+// groundPlaneView, then the image turned by M = K R_z(roll) K^-1 (points by M, lines by M^-T).
+export function rolledView(pitch, yaw, roll, focal, size) {
+  const rad = Math.PI / 180;
+  const g = groundPlaneView(pitch * rad, yaw * rad, focal, size);
+  const M = matmul(matmul(g.K, rotationZ(roll * rad)), inv3(g.K));
+  return {
+    segments: g.segments.map((seg) => mapPoints(M, seg)),
+    nAlongZ: g.nAlongZ,
+    vpZ: apply(M, g.vpZ),
+    vpX: apply(M, g.vpX),
+    horizon: apply(transpose(inv3(M)), g.horizon),
+  };
+}
+
+// The eigenvector of the smallest eigenvalue of a symmetric 3x3 matrix (cyclic Jacobi rotations).
+function smallestEigenvector(S) {
+  const A = S.map((row) => row.slice());
+  const V = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  for (let sweep = 0; sweep < 30; sweep++) {
+    if (A[0][1] === 0 && A[0][2] === 0 && A[1][2] === 0) break;
+    for (const [p, q] of [[0, 1], [0, 2], [1, 2]]) {
+      if (A[p][q] === 0) continue;
+      const theta = (A[q][q] - A[p][p]) / (2 * A[p][q]);
+      const t = (theta >= 0 ? 1 : -1) / (Math.abs(theta) + Math.sqrt(theta * theta + 1));
+      const c = 1 / Math.sqrt(t * t + 1), s = t * c;
+      for (const M of [A, V]) {
+        for (let k = 0; k < 3; k++) {
+          const mp = M[k][p], mq = M[k][q];
+          M[k][p] = c * mp - s * mq;
+          M[k][q] = s * mp + c * mq;
+        }
+      }
+      for (let k = 0; k < 3; k++) {
+        const ap = A[p][k], aq = A[q][k];
+        A[p][k] = c * ap - s * aq;
+        A[q][k] = s * ap + c * aq;
+      }
+    }
+  }
+  const k = [0, 1, 2].reduce((best, i) => (A[i][i] < A[best][best] ? i : best), 0);
+  return V.map((row) => row[k]);
+}
+
+// Twin: camlab.projective.normalise_points for one point: w = 1, or a unit (x, y) when ideal.
+export function normalisePoint(x) {
+  const scale = x[2] === 0 ? Math.hypot(x[0], x[1]) : x[2];
+  return x.map((c) => c / scale);
+}
+
+// Twin: camlab.projective.normalise_lines for one line: a^2 + b^2 = 1.
+export function normaliseLine(l) {
+  const ab = Math.hypot(l[0], l[1]);
+  const scale = ab === 0 ? l[2] : ab;
+  return l.map((c) => c / scale);
+}
+
+// Twin: camlab.projective.vanishing_point(segments): the v minimising sum (l_i . v)^2 over unit v,
+// each segment's line l_i (a^2 + b^2 = 1) after Hartley's conditioning T of all the ends, then
+// v = T^-1 v_n; ideal when |w| <= 1e-12 |(x, y)|. (The eigenvector of sum l_i l_i^T, the SVD's
+// right singular vector up to sign; the sign is the caller's: drawnVanishingPoint fixes it.)
+export function vanishingPoint(segments) {
+  const pts = segments.flat();
+  const c = [0, 1].map((i) => pts.reduce((s, p) => s + p[i], 0) / pts.length);
+  const spread = pts.reduce((s, p) => s + Math.hypot(p[0] - c[0], p[1] - c[1]), 0) / pts.length;
+  const s = Math.SQRT2 / spread;
+  const lines = segments.map(([a, b]) => normaliseLine(cross(
+    [s * a[0] - s * c[0], s * a[1] - s * c[1], 1], [s * b[0] - s * c[0], s * b[1] - s * c[1], 1],
+  )));
+  const S = [0, 1, 2].map((i) => [0, 1, 2].map((j) => lines.reduce((acc, l) => acc + l[i] * l[j], 0)));
+  const e = smallestEigenvector(S);
+  const v = [e[0] / s + c[0] * e[2], e[1] / s + c[1] * e[2], e[2]];
+  if (Math.abs(v[2]) <= 1e-12 * Math.hypot(v[0], v[1])) v[2] = 0;
+  return normalisePoint(v);
+}
+
+// Twin: camlab.widgets.projective_plane.twins.drawn_vanishing_point(segments): vanishingPoint, an
+// ideal one turned to point right (x > 0, or y > 0 when x = 0).
+export function drawnVanishingPoint(segments) {
+  const v = vanishingPoint(segments);
+  const flip = v[2] === 0 && (v[0] < 0 || (v[0] === 0 && v[1] < 0));
+  return v.map((c) => (flip ? -c : c) + 0);
+}
+
+// Twin: camlab.projective.horizon(vp1, vp2): the line through them, a^2 + b^2 = 1.
+export function horizonLine(vp1, vp2) {
+  return normaliseLine(cross(vp1, vp2));
+}
+
+// Twin: camlab.widgets.projective_plane.twins.horizon_note(hz, visible, title).
+export function horizonNote(hz, visible, title) {
+  if (visible) return title;
+  const v = Math.abs(hz[1]) > 1e-12 ? -hz[2] / hz[1] : NaN;
+  return `horizon above the image: v = ${Number.isFinite(v) ? formatFixed(v, 0) : "nan"} px at u = 0`;
+}

@@ -18,6 +18,7 @@ from ...plotting import optics
 from . import canvas_height, line_style, marker_style, text_lines, text_style, to_canvas_pixels
 
 __all__ = [
+    "arrow_style",
     "axes_box",
     "cross_marker_style",
     "dolly_zoom_scene",
@@ -46,8 +47,23 @@ def fill_style(patch: Any) -> dict:
     return dict(fill=f"rgba({round(r * 255)}, {round(g * 255)}, {round(b * 255)}, {a:.4f})")
 
 
-def _arrow_style(arrow: Any, pt: float) -> dict:
-    """A "<->" dimension arrow: its colour, width and heads, px (matplotlib's ``ArrowStyle.CurveAB``)."""
+def arrow_style(arrow: Any, pt: float) -> dict:
+    """An annotation's "<->" or "->" arrow: its colour, width, heads and shrinks, px (``drawing.js``'s arrows).
+
+    Parameters
+    ----------
+    arrow : matplotlib.text.Annotation
+        The annotation (its text empty: the arrow leaves the text's point, shrunk by shrinkA).
+    pt : float
+        Figure dpi / 72.
+
+    Returns
+    -------
+    dict
+        ``color``, ``width``, ``headLength``, ``headWidth`` (matplotlib's ``ArrowStyle.CurveAB``
+        and ``CurveB``: the head's size times the annotation's text size), ``shrinkA`` and
+        ``shrinkB`` (px).
+    """
     patch = arrow.arrow_patch
     style = patch.get_arrowstyle()
     mutation = arrow.get_size() * pt  # annotate's mutation scale is its text size
@@ -56,6 +72,8 @@ def _arrow_style(arrow: Any, pt: float) -> dict:
         width=patch.get_linewidth() * pt,
         headLength=style.head_length * mutation,
         headWidth=style.head_width * mutation,
+        shrinkA=patch.shrinkA * pt,
+        shrinkB=patch.shrinkB * pt,
     )
 
 
@@ -115,7 +133,7 @@ def similar_triangles_scene(ax: Any, art: dict, controls: Mapping[str, Any]) -> 
             ),
             dims={
                 key: dict(
-                    arrow=_arrow_style(d["arrow"], pt),
+                    arrow=arrow_style(d["arrow"], pt),
                     label=text_style(
                         d["label"],
                         box=to_hex(d["label"].get_bbox_patch().get_facecolor()),

@@ -7,14 +7,39 @@ from types import SimpleNamespace
 import ipywidgets as W
 import numpy as np
 
-from ... import fixtures
 from ... import projective as pj
-from ..._validate import DegenerateError
-from ...camera import rotation_z
 from ...plotting import palette
-from ...plotting.plane import arrow_marker, arrow_to_infinity, image_axes, plane_axes, set_line
+from ...plotting.plane import (
+    ARROW_PATH,
+    arrow_marker,
+    arrow_to_infinity,
+    image_axes,
+    plane_axes,
+    set_line,
+)
 from .._base import Demo, FigureView, build_demo, register, slider
+from ..browser import BrowserView
+from ..browser.plane_scenes import (
+    cross_ratio_scene,
+    duality_scene,
+    parallel_scene,
+    vanishing_scene,
+)
 from ..controls import monospace
+from .twins import (
+    ab_over_bc,
+    cross_ratio_caption,
+    cross_ratio_homography,
+    drawn_vanishing_point,
+    duality_caption,
+    horizon_note,
+    label_offset,
+    line_at_angle,
+    meet_or_none,
+    meet_w_curve,
+    normal_line,
+    rolled_view,
+)
 
 # The sliders' ranges, and the 3-D box that holds every scaled point they reach: |λ x| <= 2 * 1.5.
 _LIFT_XY, _LIFT_SCALE = 1.5, 2.0
@@ -157,10 +182,8 @@ def lift_to_plane() -> Demo:
     )
 
 
-def _line_at_angle(angle_deg: float | np.ndarray, offset: float) -> np.ndarray:
-    """The line(s) through (0, offset) at ``angle_deg`` to the x axis, as (a, b, c) rows."""
-    t = np.radians(angle_deg)
-    return pj.join([0.0, offset], np.stack([np.cos(t), offset + np.sin(t)], axis=-1))
+SAME_LINE_NOTE = "l2 = l1 at 30°: one line,\nno single meet point, no w"
+"""What :func:`parallel_lines` says over its |w| panel when l2 turns onto l1."""
 
 
 def _parallel_figure(view: FigureView) -> SimpleNamespace:
@@ -198,11 +221,12 @@ def _parallel_figure(view: FigureView) -> SimpleNamespace:
     # constrained layout leaves the last tick label ("60") half outside the figure: pad the right edge
     view.fig.get_layout_engine().set(w_pad=0.12)
     boxed = {"ha": "center", "va": "center", "fontsize": 9, "color": palette.TAB_RED}
-    same_note = axw.text(0.5, 0.45, "", transform=axw.transAxes, **boxed)
+    same_note = axw.text(0.5, 0.45, SAME_LINE_NOTE, transform=axw.transAxes, **boxed)
     same_note.set_bbox({"fc": "white", "ec": palette.TAB_RED})
     same_note.set_visible(False)
     return SimpleNamespace(
         ax=ax,
+        axw=axw,
         l1=l1_artist,
         l2=l2_artist,
         meet_dot=meet_dot,
@@ -226,7 +250,7 @@ def parallel_lines() -> Demo:
         length, ``point`` its Euclidean position; ``meet`` and ``point`` None, ``w`` NaN, when
         the lines coincide).
     """
-    view = FigureView(figsize=(9, 4.4))
+    view = BrowserView(("angle2", "offset2"), figsize=(9, 4.4))
     f = _parallel_figure(view)
     ax, l1_artist, l2_artist, meet_dot, arrow = f.ax, f.l1, f.l2, f.meet_dot, f.arrow
     w_curve, w_dot, same_note = f.w_curve, f.w_dot, f.same_note
@@ -235,29 +259,21 @@ def parallel_lines() -> Demo:
     angles = np.linspace(0, 60, 241)
     view.animate(l1_artist, l2_artist, meet_dot, arrow, w_curve, w_dot, same_note)
 
-    l1 = _line_at_angle(angle1, 0.5)
+    l1 = line_at_angle(angle1, 0.5)
 
     def update(v: dict, state: dict) -> None:
-        l2 = _line_at_angle(v["angle2"], v["offset2"])
-        family = np.cross(l1, _line_at_angle(angles, v["offset2"]))
-        with np.errstate(invalid="ignore"):  # the family may contain l1 itself (0/0 -> NaN)
-            w_family = np.abs(family[:, 2]) / np.linalg.norm(family, axis=1)
-        # Through l1's own point (0, 0.5) every l2 meets l1 there, except at l1's angle, where
-        # l2 = l1 and there is no meet point: leave a visible gap, not one missing sample.
-        coincide_at = np.all(np.abs(np.cross(l1, _line_at_angle(angle1, v["offset2"]))) < 1e-12)
-        if coincide_at:
-            w_family = np.where(np.abs(angles - angle1) < 1.0, np.nan, w_family)
-        w_curve.set_data(angles, w_family)
+        l2 = line_at_angle(v["angle2"], v["offset2"])
+        # Through l1's own point (0, 0.5) every l2 meets l1 there, except at l1's angle: a gap there
+        w_curve.set_data(angles, meet_w_curve(l1, angle1, angles, v["offset2"]))
         set_line(l1_artist, l1, ax)
         set_line(l2_artist, l2, ax)
-        try:
-            x = pj.meet(l1, l2)
-        except DegenerateError:
+        x = meet_or_none(l1, l2)
+        if x is None:
             state.update(l2=l2, meet=None, w=float("nan"), point=None)
             meet_dot.set_data([], [])
             arrow.set_visible(False)
             w_dot.set_data([], [])
-            same_note.set_text("l2 = l1 at 30°: one line,\nno single meet point, no w")
+            same_note.set_text(SAME_LINE_NOTE)
             same_note.set_visible(True)
             readout.value = monospace(
                 "l2 = l1: one line, every point shared,\nno single meet point"
@@ -288,7 +304,7 @@ def parallel_lines() -> Demo:
         "angle2": slider(55.0, 0.0, 60.0, 0.5, "angle of l2 (°)"),
         "offset2": slider(-1.0, -3.0, 3.0, 0.1, "l2 crosses x = 0 at y ="),
     }
-    return build_demo(
+    demo = build_demo(
         "parallel_lines",
         controls,
         view,
@@ -296,6 +312,9 @@ def parallel_lines() -> Demo:
         title="Parallel lines meet at infinity",
         extra=[readout],
     )
+    world = dict(l1=l1, angle1=angle1, angles=angles, note=SAME_LINE_NOTE)
+    view.publish(demo, parallel_scene((ax, f.axw), vars(f), world))  # the browser draws the moves
+    return demo
 
 
 @register(
@@ -318,7 +337,7 @@ def point_line_duality() -> Demo:
         line, and their duals) and ``state`` (``point`` and ``line`` homogeneous,
         ``incidence`` p · l, ``on_line``).
     """
-    view = FigureView(figsize=(9, 4.9))
+    view = BrowserView(("px", "py", "line_angle", "line_dist"), figsize=(9, 4.9))
     axes = view.fig.subplot_mosaic([["primal", "dual"], ["text", "text"]], height_ratios=[1, 0.06])
     ax_p, ax_d, ax_t = axes["primal"], axes["dual"], axes["text"]
     ax_t.set_axis_off()
@@ -341,9 +360,7 @@ def point_line_duality() -> Demo:
 
     def update(v: dict, state: dict) -> None:
         p = pj.to_homogeneous([v["px"], v["py"]])
-        t = np.radians(v["line_angle"])
-        # Line with unit normal (cos t, sin t) at distance line_dist from the origin.
-        line = np.array([np.cos(t), np.sin(t), -v["line_dist"]])
+        line = normal_line(v["line_angle"], v["line_dist"])
         incidence = float(p @ line)
         state.update(
             point=p, line=line, incidence=incidence, on_line=bool(pj.is_on_line(p, line, tol=1e-3))
@@ -351,27 +368,16 @@ def point_line_duality() -> Demo:
         p_dot.set_data([p[0]], [p[1]])
         set_line(l_line, line, ax_p)
         set_line(pd_line, p, ax_d)
-        ld = pj.from_homogeneous(line)
         pos, direction = arrow_to_infinity(line, ax_d)
         if direction.any():  # l* is off the panel: an arrow at the edge, pointing where it is
             ld_dot.set_data([], [])
             ld_arrow.xy, ld_arrow.xyann = tuple(pos), tuple(pos - 0.9 * direction)
             ld_arrow.set_visible(True)
-            off = f"; l* = ({ld[0] + 0.0:.1f}, {ld[1] + 0.0:.1f}) is off the dual panel (arrow)"
         else:
-            ld_dot.set_data([ld[0]], [ld[1]])
+            ld_dot.set_data([pos[0]], [pos[1]])
             ld_arrow.set_visible(False)
-            off = ""
         p_text, l_text = (", ".join(f"{c:+.2f}" for c in x) for x in (p, line))
-        text.set_text(
-            f"p · l = {incidence:+.3f}: "
-            + (
-                "p is on l, and l* is on p*"
-                if state["on_line"]
-                else "p is not on l, and l* is not on p*"
-            )
-            + off
-        )
+        text.set_text(duality_caption(p, line, ax_d.get_xlim(), ax_d.get_ylim()))
         readout.value = monospace(
             f"p = ({p_text})\nl = ({l_text})\np · l = {incidence:+.3f}\n(0 ⇔ p on l ⇔ l* on p*)"
         )
@@ -384,7 +390,7 @@ def point_line_duality() -> Demo:
         ),  # every line: y = -1 at 270
         "line_dist": slider(1.0, 0.2, 2.5, 0.05, "l: distance from origin"),
     }
-    return build_demo(
+    demo = build_demo(
         "point_line_duality",
         controls,
         view,
@@ -392,6 +398,9 @@ def point_line_duality() -> Demo:
         title="Duality: points and lines are the same 3-vectors",
         extra=[readout],
     )
+    art = dict(p_dot=p_dot, l_line=l_line, pd_line=pd_line, ld_dot=ld_dot, ld_arrow=ld_arrow)
+    view.publish(demo, duality_scene((ax_p, ax_d), art, text))  # the browser draws the moves
+    return demo
 
 
 _VANISHING_SWEEP = {
@@ -403,26 +412,6 @@ _VANISHING_SWEEP = {
 
 
 _VANISHING_TITLE = "ground grid seen by a tilted camera"
-
-
-def _rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> SimpleNamespace:
-    """:func:`camlab.fixtures.ground_plane_view`, then the camera rolled by ``roll`` degrees.
-
-    Rolling turns the camera about its own centre (about its optical axis), so the whole image
-    moves by the homography :math:`M = K R_z K^{-1}`: points (segments, vanishing points) by
-    :math:`M`, the horizon by :math:`M^{-T}`. Positive ``roll`` turns the image clockwise on the
-    screen (x right, v down), so the horizon falls to the right.
-    """
-    g = fixtures.ground_plane_view(np.radians(pitch), np.radians(yaw), focal, size)
-    M = g.K @ rotation_z(np.radians(roll)) @ np.linalg.inv(g.K)
-    segments = pj.map_points(M, g.segments.reshape(-1, 2)).reshape(-1, 2, 2)
-    return SimpleNamespace(
-        segments=segments,
-        n_along_z=g.n_along_z,
-        vp_z=M @ g.vp_z,
-        vp_x=M @ g.vp_x,
-        horizon=np.linalg.inv(M).T @ g.horizon,
-    )
 
 
 def _vanishing_figure(view: FigureView, size: tuple[int, int]) -> SimpleNamespace:
@@ -502,7 +491,7 @@ def vanishing_points() -> Demo:
         ``horizon_true``, and ``horizon_visible``).
     """
     size = (640, 480)
-    view = FigureView(figsize=(7, 6))
+    view = BrowserView(("pitch", "yaw", "roll", "focal"), figsize=(7, 6))
     parts = _vanishing_figure(view, size)
     ax, grid_z, grid_x, note = parts.ax, parts.grid_z, parts.grid_x, parts.note
     horizon_artist, vz_dot, vx_dot = parts.horizon, parts.vz_dot, parts.vx_dot
@@ -511,16 +500,14 @@ def vanishing_points() -> Demo:
     view.animate(grid_z, grid_x, horizon_artist, vz_dot, vx_dot, note)
 
     def update(v: dict, state: dict) -> None:
-        g = _rolled_view(v["pitch"], v["yaw"], v["roll"], v["focal"], size)
+        g = rolled_view(v["pitch"], v["yaw"], v["roll"], v["focal"], size)
         segs = g.segments
         n = g.n_along_z
         grid_z.set_segments(segs[:n])
         grid_x.set_segments(segs[n:])
-        vp_z = pj.vanishing_point(np.array(segs[:n]))  # estimated from the drawn lines
+        vp_z = drawn_vanishing_point(segs[:n])  # estimated from the drawn lines
         vp_x = (
-            pj.vanishing_point(np.array(segs[n:]))
-            if len(segs) - n >= 2
-            else pj.normalise_points(g.vp_x)
+            drawn_vanishing_point(segs[n:]) if len(segs) - n >= 2 else pj.normalise_points(g.vp_x)
         )
         hz = pj.horizon(vp_z, vp_x)
         state.update(
@@ -552,11 +539,7 @@ def vanishing_points() -> Demo:
                 )
             )
         v_horizon = float(-hz[2] / hz[1]) if abs(hz[1]) > 1e-12 else float("nan")
-        note.set_text(
-            _VANISHING_TITLE
-            if visible
-            else f"horizon above the image: v = {v_horizon:.0f} px at u = 0"
-        )
+        note.set_text(horizon_note(hz, visible, _VANISHING_TITLE))
         note.set_color("k" if visible else palette.TAB_RED)
         if not visible:
             lines.append(
@@ -572,7 +555,7 @@ def vanishing_points() -> Demo:
         "roll": slider(0.0, -20.0, 20.0, 0.5, "roll (°, + = clockwise)"),
         "focal": slider(600.0, 300.0, 1200.0, 10.0, "focal length (px)"),
     }
-    return build_demo(
+    demo = build_demo(
         "vanishing_points",
         controls,
         view,
@@ -580,19 +563,15 @@ def vanishing_points() -> Demo:
         title="Vanishing points and the horizon",
         extra=[readout],
     )
+    world = dict(size=size, title=_VANISHING_TITLE, note_color=palette.TAB_RED, arrow=ARROW_PATH)
+    view.publish(demo, vanishing_scene(vars(parts), world))  # the browser draws the moves
+    return demo
 
 
 _CR_H = 0.3  # the cross-ratio demo's largest |h31|, |h32|
 
 
 _MID = {"ha": "center", "va": "center"}
-
-
-def _label_offset(points: np.ndarray) -> tuple[float, float]:
-    """An offset (points) of 10 along the normal of the line through ``points``, its upper side."""
-    d = points[-1] - points[0]
-    n = np.array([-d[1], d[0]]) / np.linalg.norm(d)
-    return tuple(10.0 * (n if n[1] >= 0 else -n))
 
 
 def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
@@ -626,7 +605,9 @@ def _cross_ratio_figure(view: FigureView) -> SimpleNamespace:
     ax_s.plot(points[:, 0], points[:, 1], "-", color="0.3")
     ax_s.scatter(points[:, 0], points[:, 1], c=colors, s=50, zorder=3)
     for name, p in zip("ABCD", points, strict=True):  # beside the line, on its normal
-        ax_s.annotate(name, p, xytext=_label_offset(points), textcoords="offset points", **_MID)
+        ax_s.annotate(
+            name, p, xytext=tuple(label_offset(points)), textcoords="offset points", **_MID
+        )
     mapped_grid = LineCollection([], colors=palette.GREY, lw=0.8)
     ax_t.add_collection(mapped_grid)
     (mapped_line,) = ax_t.plot([], [], "-", color="0.3")
@@ -663,30 +644,23 @@ def cross_ratio_invariance() -> Demo:
         and after) and ``state`` (``H``, ``mapped`` the points after, ``cross_ratio_before``,
         ``cross_ratio_after``, ``ratio_before``, ``ratio_after`` AB / BC).
     """
-    view = FigureView(figsize=(9, 4.6))
+    view = BrowserView(("h31", "h32", "angle"), figsize=(9, 4.6))
     f = _cross_ratio_figure(view)
     grid, points, mapped_grid, mapped_line = f.grid, f.points, f.mapped_grid, f.mapped_line
     mapped_pts, labels, numbers = f.mapped_pts, f.labels, f.numbers
     view.animate(mapped_grid, mapped_line, mapped_pts, *labels, numbers)
     readout = W.HTML()
-
-    def ratio(p: np.ndarray) -> float:  # an affine invariant only: AB / BC
-        return float(np.linalg.norm(p[1] - p[0]) / np.linalg.norm(p[2] - p[1]))
+    ratio = ab_over_bc  # an affine invariant only: AB / BC
 
     def update(v: dict, state: dict) -> None:
-        t = np.radians(v["angle"])
-        H = np.array(
-            [[np.cos(t), -np.sin(t), 0.0], [np.sin(t), np.cos(t), 0.0], [v["h31"], v["h32"], 1.0]]
-        )
-        # Sample grid lines densely: a homography keeps lines straight, but we draw points.
-        dense = np.linspace(0, 1, 2)[:, None]
-        mapped = [pj.map_points(H, s[0] + dense * (s[1] - s[0])) for s in grid]
-        mapped_grid.set_segments(mapped)
+        H = cross_ratio_homography(v["h31"], v["h32"], v["angle"])
+        # each grid line by its two ends: a homography keeps lines straight (none crosses H's l_inf)
+        mapped_grid.set_segments(pj.map_points(H, grid.reshape(-1, 2)).reshape(-1, 2, 2))
         q = pj.map_points(H, points)
         mapped_line.set_data(q[:, 0], q[:, 1])
         mapped_pts.set_offsets(q)
         for lab, p in zip(labels, q, strict=True):
-            lab.xy, lab.xyann = tuple(p), _label_offset(q)
+            lab.xy, lab.xyann = tuple(p), tuple(label_offset(q))
         cr_before, cr_after = pj.cross_ratio(points), pj.cross_ratio(q)
         state.update(
             H=H,
@@ -696,10 +670,7 @@ def cross_ratio_invariance() -> Demo:
             ratio_before=ratio(points),
             ratio_after=ratio(q),
         )
-        numbers.set_text(
-            f"(A, B; C, D): before {cr_before:.4f}, after {cr_after:.4f}      "
-            f"AB / BC: before {ratio(points):.4f}, after {ratio(q):.4f}"
-        )
+        numbers.set_text(cross_ratio_caption(points, q))
         readout.value = monospace(
             f"             before   after\n"
             f"(A,B;C,D)  {cr_before:8.4f} {cr_after:8.4f}\n"
@@ -711,7 +682,7 @@ def cross_ratio_invariance() -> Demo:
         "h32": slider(0.1, -_CR_H, _CR_H, 0.01, "h32 (perspective y)"),
         "angle": slider(10.0, -45.0, 45.0, 1.0, "rotation (°)"),
     }
-    return build_demo(
+    demo = build_demo(
         "cross_ratio_invariance",
         controls,
         view,
@@ -719,3 +690,5 @@ def cross_ratio_invariance() -> Demo:
         title="The cross-ratio is projectively invariant",
         extra=[readout],
     )
+    view.publish(demo, cross_ratio_scene(vars(f)))  # the browser draws the moves
+    return demo

@@ -1,0 +1,320 @@
+"""The per-move arithmetic and captions of lesson 06's demos: the numpy twins of ``geometry.js``.
+
+Each demo's ``update`` calls these, and the browser (``camlab/widgets/browser/geometry.js``) runs
+a JavaScript function of the same name in camelCase on every slider move;
+``tests/test_browser_geometry_parity.py`` runs both on random inputs and compares them.
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from ... import fixtures
+from ... import projective as pj
+from ...camera import rotation_z
+from ...plotting.plane import arrow_placement
+
+__all__ = [
+    "ab_over_bc",
+    "cross_ratio_caption",
+    "cross_ratio_homography",
+    "RolledView",
+    "drawn_vanishing_point",
+    "duality_caption",
+    "horizon_note",
+    "label_offset",
+    "line_at_angle",
+    "meet_or_none",
+    "meet_w_curve",
+    "normal_line",
+    "rolled_view",
+]
+
+
+def normal_line(angle_deg: float, distance: float) -> np.ndarray:
+    r"""The line with unit normal :math:`(\cos t, \sin t)` at ``distance`` from the origin.
+
+    Parameters
+    ----------
+    angle_deg : float
+        The normal's angle t to the x axis, degrees.
+    distance : float
+        The line's distance from the origin (plot units), along the normal.
+
+    Returns
+    -------
+    (3,) ndarray
+        :math:`(\cos t, \sin t, -d)`: the points x with :math:`x \cos t + y \sin t = d`.
+    """
+    t = np.radians(angle_deg)
+    return np.array([np.cos(t), np.sin(t), -distance])
+
+
+def duality_caption(
+    point: np.ndarray, line: np.ndarray, xlim: tuple[float, float], ylim: tuple[float, float]
+) -> str:
+    """The line of text under :func:`~camlab.widgets.projective_plane.point_line_duality`'s panels.
+
+    Parameters
+    ----------
+    point, line : (3,) ndarray
+        The point p and the line l, homogeneous.
+    xlim, ylim : (lo, hi)
+        The dual panel's limits: where l* = (a/c, b/c) is drawn, or an arrow to it.
+
+    Returns
+    -------
+    str
+        p . l to three decimals, whether p is on l (and so l* on p*, within 1e-3 relative), and
+        where l* is when it is off the dual panel.
+    """
+    incidence = float(point @ line)
+    on_line = bool(pj.is_on_line(point, line, tol=1e-3))
+    off = ""
+    if arrow_placement(line, xlim, ylim).direction.any():  # l* off the panel: an arrow points to it
+        ld = pj.from_homogeneous(line)
+        off = f"; l* = ({ld[0] + 0.0:.1f}, {ld[1] + 0.0:.1f}) is off the dual panel (arrow)"
+    verdict = "p is on l, and l* is on p*" if on_line else "p is not on l, and l* is not on p*"
+    return f"p · l = {incidence:+.3f}: {verdict}{off}"
+
+
+def line_at_angle(angle_deg: float | np.ndarray, offset: float) -> np.ndarray:
+    """The line(s) through (0, offset) at ``angle_deg`` to the x axis.
+
+    Parameters
+    ----------
+    angle_deg : float or (N,) array_like
+        The angle(s), degrees.
+    offset : float
+        Where the line crosses x = 0.
+
+    Returns
+    -------
+    (3,) or (N, 3) ndarray
+        The line(s) (a, b, c): the join of (0, offset) and (cos t, offset + sin t).
+    """
+    t = np.radians(angle_deg)
+    return pj.join([0.0, offset], np.stack([np.cos(t), offset + np.sin(t)], axis=-1))
+
+
+def meet_or_none(l1: np.ndarray, l2: np.ndarray) -> np.ndarray | None:
+    r"""The meet :math:`l_1 \times l_2`, or None when the two are one line (:func:`camlab.projective.meet` refuses).
+
+    Parameters
+    ----------
+    l1, l2 : (3,) ndarray
+        The lines.
+
+    Returns
+    -------
+    (3,) ndarray or None
+        The homogeneous meet point (w = 0 for parallel lines); None for the same line up to scale.
+    """
+    try:
+        return pj.meet(l1, l2)
+    except pj.DegenerateError:
+        return None
+
+
+def meet_w_curve(
+    l1: np.ndarray, angle1: float, angles: np.ndarray, offset: float, gap: float = 1.0
+) -> np.ndarray:
+    """|w| of the unit meet of ``l1`` with each line through (0, offset) at ``angles``.
+
+    Parameters
+    ----------
+    l1 : (3,) ndarray
+        The fixed line, at ``angle1`` degrees.
+    angle1 : float
+        Its angle, degrees.
+    angles : (N,) ndarray
+        The other lines' angles, degrees.
+    offset : float
+        Where the other lines cross x = 0.
+    gap : float
+        When (0, offset) lies on ``l1`` every line meets it there except ``l1`` itself: the curve
+        is left out within ``gap`` degrees of ``angle1`` (a visible gap, not one missing sample).
+
+    Returns
+    -------
+    (N,) ndarray
+        abs(w) / norm((x, y, w)) of each meet; NaN where the lines coincide and in the gap.
+    """
+    family = np.cross(l1, line_at_angle(angles, offset))
+    with np.errstate(invalid="ignore"):  # the family may contain l1 itself (0/0 -> NaN)
+        w = np.abs(family[:, 2]) / np.linalg.norm(family, axis=1)
+    if np.all(np.abs(np.cross(l1, line_at_angle(angle1, offset))) < 1e-12):
+        w = np.where(np.abs(angles - angle1) < gap, np.nan, w)
+    return w
+
+
+def cross_ratio_homography(h31: float, h32: float, angle_deg: float) -> np.ndarray:
+    """The homography of :func:`~camlab.widgets.projective_plane.cross_ratio_invariance`: a turn and a perspective row.
+
+    Parameters
+    ----------
+    h31, h32 : float
+        The perspective row (h31, h32, 1).
+    angle_deg : float
+        The turn, degrees.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        ``[[cos t, -sin t, 0], [sin t, cos t, 0], [h31, h32, 1]]``.
+    """
+    t = np.radians(angle_deg)
+    return np.array([[np.cos(t), -np.sin(t), 0.0], [np.sin(t), np.cos(t), 0.0], [h31, h32, 1.0]])
+
+
+def label_offset(points: np.ndarray) -> np.ndarray:
+    """An offset (points) of 10 along the normal of the line through ``points``, on its upper side.
+
+    Parameters
+    ----------
+    points : (N, 2) ndarray
+        Collinear points; the first and the last give the line.
+
+    Returns
+    -------
+    (2,) ndarray
+        The offset, in points (y up), for an annotation's text.
+    """
+    d = points[-1] - points[0]
+    n = np.array([-d[1], d[0]]) / np.linalg.norm(d)
+    return 10.0 * (n if n[1] >= 0 else -n)
+
+
+def ab_over_bc(points: np.ndarray) -> float:
+    """The ratio of lengths AB / BC: an affine invariant only.
+
+    Parameters
+    ----------
+    points : (4, 2) ndarray
+        A, B, C, D.
+
+    Returns
+    -------
+    float
+        |B - A| / |C - B|.
+    """
+    return float(np.linalg.norm(points[1] - points[0]) / np.linalg.norm(points[2] - points[1]))
+
+
+def cross_ratio_caption(points: np.ndarray, mapped: np.ndarray) -> str:
+    """The line under :func:`~camlab.widgets.projective_plane.cross_ratio_invariance`'s panels.
+
+    Parameters
+    ----------
+    points, mapped : (4, 2) ndarray
+        A, B, C, D before and after the homography.
+
+    Returns
+    -------
+    str
+        The cross-ratio (A, B; C, D) and AB / BC, before and after, to four decimals.
+    """
+    cr = [pj.cross_ratio(p) for p in (points, mapped)]
+    r = [ab_over_bc(p) for p in (points, mapped)]
+    return (
+        f"(A, B; C, D): before {cr[0]:.4f}, after {cr[1]:.4f}      "
+        f"AB / BC: before {r[0]:.4f}, after {r[1]:.4f}"
+    )
+
+
+class RolledView(NamedTuple):
+    """What :func:`rolled_view` returns: the ground grid's image by a rolled camera.
+
+    Attributes
+    ----------
+    segments : (M, 2, 2) ndarray
+        The grid's segments in the image, pixels: the lines along z first.
+    n_along_z : int
+        How many of them run along z (ahead); the rest run along x (across).
+    vp_z, vp_x : (3,) ndarray
+        The true vanishing points of the two directions, homogeneous.
+    horizon : (3,) ndarray
+        The true horizon, homogeneous.
+    """
+
+    segments: np.ndarray
+    n_along_z: int
+    vp_z: np.ndarray
+    vp_x: np.ndarray
+    horizon: np.ndarray
+
+
+def rolled_view(pitch: float, yaw: float, roll: float, focal: float, size) -> RolledView:
+    """:func:`camlab.fixtures.ground_plane_view`, then the camera rolled by ``roll`` degrees.
+
+    Rolling turns the camera about its own centre (about its optical axis), so the whole image
+    moves by the homography :math:`M = K R_z K^{-1}`: points (segments, vanishing points) by
+    :math:`M`, the horizon by :math:`M^{-T}`. Positive ``roll`` turns the image clockwise on the
+    screen (x right, v down), so the horizon falls to the right.
+
+    Parameters
+    ----------
+    pitch, yaw, roll : float
+        The camera's pitch (down), yaw and roll, degrees.
+    focal : float
+        Focal length, pixels.
+    size : (width, height)
+        The image, pixels.
+
+    Returns
+    -------
+    RolledView
+        The grid's segments, how many run along z, the vanishing points and the horizon.
+    """
+    g = fixtures.ground_plane_view(np.radians(pitch), np.radians(yaw), focal, size)
+    M = g.K @ rotation_z(np.radians(roll)) @ np.linalg.inv(g.K)
+    segments = pj.map_points(M, g.segments.reshape(-1, 2)).reshape(-1, 2, 2)
+    return RolledView(segments, g.n_along_z, M @ g.vp_z, M @ g.vp_x, np.linalg.inv(M).T @ g.horizon)
+
+
+def drawn_vanishing_point(segments: np.ndarray) -> np.ndarray:
+    """:func:`camlab.projective.vanishing_point` of the drawn segments, an ideal one pointing right.
+
+    An ideal point lies both ways along its direction; the estimate's sign is the SVD's, which
+    no other implementation repeats. Fixing it (x > 0, or y > 0 when x = 0) makes the arrow to it
+    point the same way in every drawing of the demo.
+
+    Parameters
+    ----------
+    segments : (N, 2, 2) ndarray
+        N >= 2 segments, pixels.
+
+    Returns
+    -------
+    (3,) ndarray
+        The vanishing point, normalised (w = 1, or a unit (x, y) pointing right if ideal).
+    """
+    v = pj.vanishing_point(segments)
+    if v[2] == 0 and (v[0] < 0 or (v[0] == 0 and v[1] < 0)):
+        v = -v
+    return v + 0.0
+
+
+def horizon_note(hz: np.ndarray, visible: bool, title: str) -> str:
+    """The title of :func:`~camlab.widgets.projective_plane.vanishing_points`: the note when the horizon is above the image.
+
+    Parameters
+    ----------
+    hz : (3,) ndarray
+        The horizon (a, b, c).
+    visible : bool
+        Whether it crosses the image.
+    title : str
+        The title when it does.
+
+    Returns
+    -------
+    str
+        ``title``, or where the horizon crosses u = 0, to the pixel.
+    """
+    if visible:
+        return title
+    v_horizon = float(-hz[2] / hz[1]) if abs(hz[1]) > 1e-12 else float("nan")
+    return f"horizon above the image: v = {v_horizon:.0f} px at u = 0"

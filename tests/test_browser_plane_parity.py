@@ -1,0 +1,239 @@
+"""Lesson 06's browser arithmetic (camlab/widgets/browser/geometry.js) equals its numpy twins.
+
+The projective plane's demos drawn in the browser (camlab/widgets/projective_plane): each
+JavaScript function runs under node on random inputs, with the edge cases each demo reaches, and is
+compared with the camlab function named as its twin (1e-9 relative; strings exactly).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from test_browser_geometry_parity import CASES, NODE, assert_twins, run_js
+
+from camlab import projective as pj
+from camlab.plotting.plane import arrow_placement
+from camlab.widgets.projective_plane import twins
+
+pytestmark = pytest.mark.skipif(
+    NODE is None, reason="node is not installed: the JavaScript twins cannot be run"
+)
+
+
+def _boxes(rng: np.random.Generator, n: int) -> list[tuple[list[float], list[float]]]:
+    lo = rng.uniform(-5, 0, (n, 2))
+    hi = lo + rng.uniform(0.5, 8, (n, 2))
+    return [([a[0], b[0]], [a[1], b[1]]) for a, b in zip(lo, hi, strict=True)]
+
+
+def test_clip_line_and_arrow_placement_equal_camlab():
+    rng = np.random.default_rng(61)
+    boxes = _boxes(rng, CASES) + [([-3.0, 3.0], [-3.0, 3.0])] * 6
+    lines = [*rng.normal(size=(CASES, 3))]
+    # the edge cases: through a corner, along an edge, missing the box, the line at infinity
+    lines += [[1.0, -1.0, 0.0], [0.0, 1.0, -3.0], [1.0, 0.0, 3.0], [1.0, 1.0, -9.0], [0, 0, 1.0]]
+    lines += [[0.3, 0.2, 1.0]]
+    points = [*rng.normal(scale=[4, 4, 1], size=(CASES, 3))]
+    points += [[1.0, 2.0, 0.0], [-1.0, 0.5, 0.0], [6.0, 0.0, 1.0], [0.0, -9.0, 2.0], [1, 1, 1.0]]
+    points += [[0.0, 1.0, 0.0]]
+    anchors = [None if k % 3 == 0 else rng.uniform(-1, 1, 2).tolist() for k in range(len(points))]
+    calls = [
+        ("clipLine", [list(map(float, ln)), x, y]) for ln, (x, y) in zip(lines, boxes, strict=True)
+    ]
+    calls += [
+        ("arrowPlacement", [list(map(float, p)), x, y, a])
+        for p, (x, y), a in zip(points, boxes, anchors, strict=True)
+    ]
+    out = run_js(calls)
+    n = len(lines)
+    worst, missed = 0.0, 0
+    for js, ln, (x, y) in zip(out[:n], lines, boxes, strict=True):
+        py = pj.clip_line(ln, x, y)
+        missed += bool(np.isnan(py).all())
+        worst = max(worst, assert_twins(js, py, "clipLine"))
+    arrows = 0
+    for js, p, (x, y), a in zip(out[n:], points, boxes, anchors, strict=True):
+        py = arrow_placement(np.asarray(p, dtype=float), x, y, None if a is None else np.array(a))
+        arrows += bool(py.direction.any())
+        worst = max(
+            worst,
+            assert_twins(
+                [*js["position"], *js["direction"]], [*py.position, *py.direction], "arrowPlacement"
+            ),
+        )
+    assert missed > 0 and 0 < arrows < len(points), (missed, arrows)
+    print(f"clipLine/arrowPlacement: worst relative error {worst:.2e}")
+
+
+def test_the_point_line_duality_arithmetic_and_caption_equal_the_demo():
+    rng = np.random.default_rng(62)
+    angles = np.concatenate([rng.uniform(0, 359, CASES), [0.0, 90.0, 180.0, 270.0, 45.0]])
+    dist = np.concatenate([rng.uniform(0.2, 2.5, CASES), [1.0, 0.2, 2.5, 1.0, 0.35]])
+    pts = np.concatenate(
+        [
+            np.round(rng.uniform(-2.5, 2.5, (CASES, 2)) / 0.05) * 0.05,
+            [[1.0, 0.0], [0, -1], [1, 1], [0, 0], [2.5, 2.5]],
+        ]
+    )
+    angles, dist = [float(a) for a in angles], [float(d) for d in dist]  # as the sliders give them
+    calls = [("normalLine", [a, d]) for a, d in zip(angles, dist, strict=True)]
+    lines = [twins.normal_line(a, d) for a, d in zip(angles, dist, strict=True)]
+    homog = [np.array([float(x), float(y), 1.0]) for x, y in pts]
+    lim = [-3.0, 3.0]
+    calls += [
+        ("dualityCaption", [p.tolist(), ln.tolist(), lim, lim])
+        for p, ln in zip(homog, lines, strict=True)
+    ]
+    calls += [("plusFixed", [float(v), d]) for v in rng.uniform(-3, 3, 50) for d in (1, 2, 3)]
+    calls += [("plusFixed", [v, 3]) for v in (0.0, -0.0, -0.0004, 0.0625, -0.0625)]
+    out = run_js(calls)
+    n = len(angles)
+    worst = max(assert_twins(js, py, "normalLine") for js, py in zip(out[:n], lines, strict=True))
+    captions = [twins.duality_caption(p, ln, lim, lim) for p, ln in zip(homog, lines, strict=True)]
+    wrong = [(js, py) for js, py in zip(out[n : 2 * n], captions, strict=True) if js != py]
+    assert not wrong, f"JS and Python captions differ: {wrong[:3]}"
+    assert any("is on l" in c for c in captions) and any("(arrow)" in c for c in captions)
+    formatted = [f"{args[0]:+.{args[1]}f}" for _, args in calls[2 * n :]]
+    wrong = [
+        (c, js, py)
+        for c, js, py in zip(calls[2 * n :], out[2 * n :], formatted, strict=True)
+        if js != py
+    ]
+    assert not wrong, f"JS and Python format differently: {wrong[:3]}"
+    print(f"point_line_duality: worst relative error {worst:.2e}")
+
+
+def test_the_parallel_lines_arithmetic_equals_the_demo():
+    rng = np.random.default_rng(63)
+    angles = [float(a) for a in np.round(rng.uniform(0, 60, CASES) * 2) / 2] + [30.0, 30.0, 0.0]
+    offsets = [float(o) for o in np.round(rng.uniform(-3, 3, CASES) * 10) / 10] + [0.5, -1.0, 0.5]
+    l1 = twins.line_at_angle(30.0, 0.5)
+    sweep = np.linspace(0, 60, 241)
+    calls = [("lineAtAngle", [a, o]) for a, o in zip(angles, offsets, strict=True)]
+    lines2 = [twins.line_at_angle(a, o) for a, o in zip(angles, offsets, strict=True)]
+    calls += [("meetOrNull", [l1.tolist(), ln.tolist()]) for ln in lines2]
+    calls += [("meetWCurve", [l1.tolist(), 30.0, sweep.tolist(), o]) for o in offsets]
+    out = run_js(calls)
+    n = len(angles)
+    worst = max(assert_twins(js, py, "lineAtAngle") for js, py in zip(out[:n], lines2, strict=True))
+    nulls = 0
+    for js, ln in zip(out[n : 2 * n], lines2, strict=True):
+        py = twins.meet_or_none(l1, ln)
+        assert (js is None) == (py is None), f"meetOrNull({ln}): JS {js}, numpy {py}"
+        nulls += py is None
+        if py is not None:
+            worst = max(worst, assert_twins(js, py, "meetOrNull"))
+    gaps = 0
+    for js, o in zip(out[2 * n :], offsets, strict=True):
+        py = twins.meet_w_curve(l1, 30.0, sweep, o)
+        gaps += bool(np.isnan(py).any())
+        worst = max(worst, assert_twins(js, py, "meetWCurve"))
+    assert nulls >= 1 and gaps >= 2, "the case l2 = l1 (no meet, a gap in the curve) was not tried"
+    print(f"parallel_lines: worst relative error {worst:.2e}")
+
+
+def test_the_cross_ratio_arithmetic_and_caption_equal_the_demo():
+    rng = np.random.default_rng(64)
+    h = np.round(rng.uniform(-0.3, 0.3, (CASES, 2)) * 100) / 100
+    angles = np.round(rng.uniform(-45, 45, CASES))
+    settings = [(float(a), float(b), float(t)) for (a, b), t in zip(h, angles, strict=True)]
+    settings += [(0.0, 0.0, 0.0), (0.3, 0.3, 45.0), (-0.3, -0.3, -45.0)]
+    points = np.array(
+        [[-1.0, -0.5], [-0.3, -0.15], [0.4, 0.2], [1.0, 0.5]]
+    )  # the demo's A, B, C, D
+    Hs = [twins.cross_ratio_homography(*s) for s in settings]
+    mapped = [pj.map_points(H, points) for H in Hs]
+    lines = [rng.normal(size=2) for _ in range(CASES)]  # four random collinear points each
+    more = [rng.normal(size=2) + np.outer(rng.normal(size=4), d) for d in lines]
+    calls = [("crossRatioHomography", list(s)) for s in settings]
+    calls += [("crossRatio", [q.tolist()]) for q in mapped + more]
+    calls += [("abOverBc", [q.tolist()]) for q in mapped]
+    calls += [("labelOffset", [q.tolist()]) for q in mapped + more]
+    calls += [("crossRatioCaption", [points.tolist(), q.tolist()]) for q in mapped]
+    out = iter(run_js(calls))
+    worst = max(assert_twins(next(out), H, "crossRatioHomography") for H in Hs)
+    for q in mapped + more:
+        worst = max(worst, assert_twins(next(out), pj.cross_ratio(q), "crossRatio"))
+    for q in mapped:
+        worst = max(worst, assert_twins(next(out), twins.ab_over_bc(q), "abOverBc"))
+    for q in mapped + more:
+        worst = max(worst, assert_twins(next(out), twins.label_offset(q), "labelOffset"))
+    wrong = [
+        (js, py)
+        for js, py in ((next(out), twins.cross_ratio_caption(points, q)) for q in mapped)
+        if js != py
+    ]
+    assert not wrong, f"JS and Python captions differ: {wrong[:3]}"
+    print(f"cross_ratio_invariance: worst relative error {worst:.2e}")
+
+
+def test_the_vanishing_points_arithmetic_equals_the_demo():
+    from camlab.fixtures import ground_plane_view
+
+    rng = np.random.default_rng(65)
+    n = 60
+    settings = [
+        (float(p), float(y), float(r), float(f))
+        for p, y, r, f in zip(
+            np.round(rng.uniform(0, 40, n) * 2) / 2,
+            np.round(rng.uniform(-45, 45, n) * 2) / 2,
+            np.round(rng.uniform(-20, 20, n) * 2) / 2,
+            np.round(rng.uniform(300, 1200, n) / 10) * 10,
+            strict=True,
+        )
+    ]
+    settings += [(12.0, 0.0, 0.0, 600.0), (40.0, 0.0, 0.0, 300.0), (0.0, 45.0, -20.0, 1200.0)]
+    size = [640, 480]
+    views = [twins.rolled_view(*s, size) for s in settings]
+    ground = [ground_plane_view(*np.radians(s[:2]), s[3], size) for s in settings]
+    calls = [("groundPlaneView", [*np.radians(s[:2]).tolist(), s[3], size]) for s in settings]
+    calls += [("rolledView", [*s, size]) for s in settings]
+    families = [f for g in views for f in (g.segments[: g.n_along_z], g.segments[g.n_along_z :])]
+    calls += [("drawnVanishingPoint", [f.tolist()]) for f in families]
+    drawn = [twins.drawn_vanishing_point(f) for f in families]
+    calls += [
+        ("horizonLine", [a.tolist(), b.tolist()])
+        for a, b in zip(drawn[::2], drawn[1::2], strict=True)
+    ]
+    Ms = [rng.normal(size=(3, 3)) for _ in range(CASES)]
+    calls += [("inv3", [M.tolist()]) for M in Ms]
+    out = iter(run_js(calls))
+    worst = 0.0
+    for py in ground:
+        js = next(out)
+        assert js["nAlongZ"] == py.n_along_z
+        for a, b in (
+            (js["segments"], py.segments),
+            (js["vpZ"], py.vp_z),
+            (js["vpX"], py.vp_x),
+            (js["horizon"], py.horizon),
+        ):
+            worst = max(worst, assert_twins(a, b, "groundPlaneView"))
+    for py in views:
+        js = next(out)
+        for a, b in (
+            (js["segments"], py.segments),
+            (js["vpZ"], py.vp_z),
+            (js["vpX"], py.vp_x),
+            (js["horizon"], py.horizon),
+        ):
+            worst = max(worst, assert_twins(a, b, "rolledView"))
+    ideal = 0
+    for py in drawn:
+        ideal += py[2] == 0
+        worst = max(worst, assert_twins(next(out), py, "drawnVanishingPoint"))
+    hz = [pj.horizon(a, b) for a, b in zip(drawn[::2], drawn[1::2], strict=True)]
+    worst = max(worst, *(assert_twins(next(out), py, "horizonLine") for py in hz))
+    worst = max(worst, *(assert_twins(next(out), np.linalg.inv(M), "inv3") for M in Ms))
+    assert ideal >= 2, "no ideal vanishing point (yaw 0, roll 0) was tried"
+    titles = [
+        (h, bool(np.isfinite(pj.clip_line(h, (-0.5, 639.5), (-0.5, 479.5))).all())) for h in hz
+    ]
+    got = run_js([("horizonNote", [h.tolist(), v, "title"]) for h, v in titles])
+    wrong = [
+        (g, h)
+        for g, (h, v) in zip(got, titles, strict=True)
+        if g != twins.horizon_note(h, v, "title")
+    ]
+    assert not wrong and any(not v for _, v in titles), f"horizon notes differ: {wrong[:3]}"
+    print(f"vanishing_points: worst relative error {worst:.2e}")
