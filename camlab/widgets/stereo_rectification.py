@@ -413,7 +413,7 @@ def _zoom_axes(axz, view: FigureView):
     """The zoom panel of :func:`rectify_pair`: the strip image, the left point's row and the two points."""
     r = ZOOM
     axz.set(xticks=[], yticks=[], xlim=(-0.5, 4 * r + 2.5), ylim=(2 * r + 0.5, -0.5))
-    axz.set_title("the match in yellow squares, zoomed", fontsize=10)
+    axz.set_title("yellow squares, zoomed", fontsize=10)
     zim = axz.imshow(
         np.zeros((2 * r + 1, 4 * r + 3)),
         cmap="gray",
