@@ -386,3 +386,23 @@ def test_pair_warnings_name_an_epipole_inside_and_too_few_inliers():
     assert rc.pair_warnings(sideways, 200, (640, 480)) == []
     (few,) = rc.pair_warnings(sideways, 20, (640, 480))
     assert "only 20 matches" in few
+
+
+def test_walls_specks_finds_a_low_patch_beside_the_wedge_and_where_its_match_lies():
+    """A 6-pixel patch at d = 20 on paving at d = 80, beside the wedge, whose true match is in the border."""
+    from camlab.fixtures.stereo_walls import walls_specks
+
+    d = np.full((50, 120), 80.0)
+    d[45:47, 100:103] = 20.0  # the speck: 6 pixels, bottom fifth, below half the paving
+    d[45:47, 103:106] = np.nan  # the wedge beside it
+    wedge = np.isnan(d)
+    inside_right = np.ones(d.shape, bool)
+    inside_right[:, :25] = False  # u - 80 < 25 for u < 105: the speck's true match is border
+    sp = walls_specks(d, wedge, inside_right)
+    assert sp.mask.sum() == 6 and sp.paving == 80.0
+    assert sp.borders_wedge.tolist() == [True] and sp.disparity.tolist() == [20.0]
+    assert (
+        sp.true_match_in_border.tolist() == [1.0]
+        and sp.size.tolist() == [6]
+        and sp.first_column.tolist() == [100]
+    )

@@ -4,6 +4,13 @@ r"""Dense matching of a rectified pair with its warp border masked, and a hand-h
 unfit for Hartley's method. A rectifying warp leaves a black border in each image. A disparity there means nothing, and a
 left pixel whose match lands in the *right* image's border has matched black, not the photo:
 both are masked (NaN). See lesson 11, sections 7 and 8.
+
+References
+----------
+.. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 11.12 (image
+   rectification).
+.. [2] H. Hirschmüller, 2008, "Stereo processing by semiglobal matching and mutual information",
+   *IEEE PAMI* 30(2), 328-341.
 """
 
 from __future__ import annotations
