@@ -177,3 +177,15 @@ def test_hartley_H2_accepts_another_scale_and_a_rotation_built_from_the_directio
 
     assert check("hartley_H2", from_direction).passed
     assert check("hartley_H2", lambda e, s: 7 * hartley_H2(e, s)).passed
+
+
+def test_hartley_H2_names_an_unsigned_f_apart_from_a_wrong_G31_sign():
+    """f = |e| (cell 19's old word 'distance') and G31 = +1/f tie when f < 0: each gets its own cause."""
+    from camlab.exercises.stereo_rectification.hartley import _h2
+
+    with pytest.raises(AssertionError) as info:
+        check("hartley_H2", lambda e, s: _h2(e, s, signed_f=False))
+    assert "f is signed" in str(info.value) and "G31 = +1/f" not in str(info.value), str(info.value)
+    with pytest.raises(AssertionError) as info:
+        check("hartley_H2", lambda e, s: _h2(e, s, g_sign=1.0))
+    assert "G31 = +1/f" in str(info.value) and "f is signed" not in str(info.value), str(info.value)

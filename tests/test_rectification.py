@@ -350,3 +350,59 @@ def test_property_rows_match_after_rectification(base, yaw, pitch, roll, dz, see
     except DegenerateError:
         return  # the epipole fell inside the image (strong toe-in): no homography rectification exists
     assert rc.vertical_disparity(map_points(unc.H1, x1), map_points(unc.H2, x2)).max < 1e-5
+
+
+def test_masked_disparity_masks_the_warp_border_and_the_wedge(rig):
+    """Nothing is matched on the left border; no kept match lands in the right image's border."""
+    und = [
+        cv2.undistort(im, c.K, np.array(c.dist))
+        for im, c in ((rig.left, rig.camera1), (rig.right, rig.camera2))
+    ]
+    from camlab.fixtures.stereo import true_matches
+
+    c1, c2 = (c.replace(dist=(0.0,) * 5) for c in (rig.camera1, rig.camera2))
+    _, _, u1, u2 = true_matches(rig, step=40, start=30)  # undistorted true matches
+    unc = rc.rectify_uncalibrated(u1, u2, ep.fundamental_from_cameras(c1, c2), (640, 480))
+    md = rc.masked_disparity(unc, *und, max_disparity=48, min_disparity=0)
+    assert md.disparity.shape == md.left.shape == (240, 320)
+    assert not np.isfinite(md.disparity[~md.inside_left]).any() and md.inside_left.mean() > 0.8
+    vv, uu = np.nonzero(np.isfinite(md.disparity))
+    assert len(vv) > 0.3 * md.disparity.size
+    u_r = np.round(uu - md.disparity[vv, uu]).astype(int)
+    assert (u_r >= 0).all() and md.inside_right[vv, u_r].all()
+    assert not np.isfinite(md.disparity[md.wedge]).any()
+    with pytest.raises(CamlabInputError, match="scale: expected 0 < scale <= 1"):
+        rc.masked_disparity(unc, *und, scale=2)
+    with pytest.raises(CamlabInputError, match="grey"):
+        rc.masked_disparity(unc, np.dstack([und[0]] * 3), und[1])
+
+
+def test_pair_warnings_name_an_epipole_inside_and_too_few_inliers():
+    """Forward motion puts the epipole in the image; a sideways step does not; < 50 inliers warns."""
+    forward = ep.fundamental_from_cameras(*_simple_rig(offset=(0.0, 0.5, 0.0)))
+    sideways = ep.fundamental_from_cameras(*_simple_rig(offset=(0.2, 0.0, 0.0)))
+    found = rc.pair_warnings(forward, 200, (640, 480))
+    assert len(found) == 2 and all("inside the image" in s for s in found)
+    assert rc.pair_warnings(sideways, 200, (640, 480)) == []
+    (few,) = rc.pair_warnings(sideways, 20, (640, 480))
+    assert "only 20 matches" in few
+
+
+def test_walls_specks_finds_a_low_patch_beside_the_wedge_and_where_its_match_lies():
+    """A 6-pixel patch at d = 20 on paving at d = 80, beside the wedge, whose true match is in the border."""
+    from camlab.fixtures.stereo_walls import walls_specks
+
+    d = np.full((50, 120), 80.0)
+    d[45:47, 100:103] = 20.0  # the speck: 6 pixels, bottom fifth, below half the paving
+    d[45:47, 103:106] = np.nan  # the wedge beside it
+    wedge = np.isnan(d)
+    inside_right = np.ones(d.shape, bool)
+    inside_right[:, :25] = False  # u - 80 < 25 for u < 105: the speck's true match is border
+    sp = walls_specks(d, wedge, inside_right)
+    assert sp.mask.sum() == 6 and sp.paving == 80.0
+    assert sp.borders_wedge.tolist() == [True] and sp.disparity.tolist() == [20.0]
+    assert (
+        sp.true_match_in_border.tolist() == [1.0]
+        and sp.size.tolist() == [6]
+        and sp.first_column.tolist() == [100]
+    )

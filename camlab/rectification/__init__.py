@@ -17,7 +17,9 @@ Two routes, both warping each image by a homography (plus undistortion):
   compatible with F that minimises the horizontal disparity of the matches; finally shear
   (Loop & Zhang [5]_) and scale both to reduce distortion.
 
-:func:`vertical_disparity` measures how well a pair is rectified.
+:func:`vertical_disparity` measures how well a pair is rectified; :func:`masked_disparity`
+matches a rectified pair by SGBM with its warp border masked, and :func:`pair_warnings` says
+when a hand-held pair is unfit for Hartley's method.
 
 Conventions (docs/conventions.md): pixels (u, v) = (column, row), origin at the centre of
 the top-left pixel, ``img[v, u]``; cameras are :class:`camlab.camera.Camera` with
@@ -50,6 +52,7 @@ from .calibrated import (
     rectify_points,
     unrectify_points,
 )
+from .dense import MaskedDisparity, masked_disparity, pair_warnings
 from .measure import VerticalDisparity, vertical_disparity
 from .stereo_calibration import StereoCalibration, stereo_calibrate
 from .uncalibrated import UncalibratedRectification, rectify_uncalibrated
@@ -68,4 +71,7 @@ __all__ = [
     "rectify_uncalibrated",
     "stereo_calibrate",
     "vertical_disparity",
+    "MaskedDisparity",
+    "masked_disparity",
+    "pair_warnings",
 ]

@@ -413,7 +413,7 @@ def _zoom_axes(axz, view: FigureView):
     """The zoom panel of :func:`rectify_pair`: the strip image, the left point's row and the two points."""
     r = ZOOM
     axz.set(xticks=[], yticks=[], xlim=(-0.5, 4 * r + 2.5), ylim=(2 * r + 0.5, -0.5))
-    axz.set_title("the match in red squares, zoomed", fontsize=10)
+    axz.set_title("yellow squares, zoomed", fontsize=10)
     zim = axz.imshow(
         np.zeros((2 * r + 1, 4 * r + 3)),
         cmap="gray",
@@ -422,17 +422,10 @@ def _zoom_axes(axz, view: FigureView):
         interpolation="nearest",
         extent=(-0.5, 4 * r + 2.5, 2 * r + 0.5, -0.5),
     )
-    (row,) = axz.plot([], [], color=palette.TAB_RED, lw=1.0, ls="--")
-    (dots,) = axz.plot(
-        [],
-        [],
-        "o",
-        ms=7,
-        mfc="none",
-        mec=palette.TAB_CYAN,
-        mew=2,
-        path_effects=palette.halo(2, "k"),
-    )
+    halo = palette.halo(1.0, "k")
+    (row,) = axz.plot([], [], color=palette.YELLOW, lw=1.0, ls="--", path_effects=halo)
+    dot = dict(ms=7, mfc="none", mec=palette.TAB_CYAN, mew=2, path_effects=palette.halo(2, "k"))
+    (dots,) = axz.plot([], [], "o", **dot)
     view.animate(zim, row, dots)
     return zim, row, dots
 
@@ -498,8 +491,9 @@ def _pair_figure(view: FigureView, half: list) -> SimpleNamespace:
     )
     axh.set_title("vertical disparity", fontsize=10)
     axh.grid(True, which="major", color="0.93")
-    # the zoomed match, marked where it is in the pair
-    (zmark,) = ax.plot([], [], "s", ms=9, mfc="none", mec=palette.TAB_RED, mew=1.5, ls="none")
+    # the zoomed match, yellow as every mark over a photo (red is kept for epipolar lines)
+    mark = dict(ms=9, mfc="none", mec=palette.YELLOW, mew=1.5, path_effects=palette.halo(1.5, "k"))
+    (zmark,) = ax.plot([], [], "s", ls="none", **mark)
     view.animate(im, *guides, match_lines, step, zmark, title)
     zim, zrow, zdots = _zoom_axes(axz, view)
     return SimpleNamespace(
@@ -721,7 +715,7 @@ def _disparity_figure(gt: np.ndarray) -> tuple:
     ax3.set_zlabel("up (m)", fontsize=9, labelpad=-4)
     ax3.set(xticks=[-1, 0, 1], yticks=[1, 2, 3, 4], zticks=[-0.5, 0.5])
     ax3.tick_params(labelsize=8, pad=0)
-    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.PURPLE)
+    (pts,) = ax3.plot([], [], [], ".", ms=1.0, color=palette.INDIGO)
     view.animate(im1, im2, pts)
     return view, im1, im2, pts
 
@@ -774,8 +768,8 @@ def disparity_depth() -> Demo:
         err = 100 * (z - zt) / zt
         im1.set_data(d)
         im2.set_data(err)
-        # the lesson's matcher colours: block matching purple, SGBM brown
-        pts.set_color(palette.PURPLE if v["method"].startswith("block") else palette.BROWN)
+        # the lesson's matcher colours: block matching indigo, SGBM brown
+        pts.set_color(palette.INDIGO if v["method"].startswith("block") else palette.BROWN)
         P = dp.disparity_to_points(d, rect.K, B, step=3)
         pts.set_data_3d(
             P[:, 0], P[:, 2], -P[:, 1]

@@ -30,6 +30,7 @@ def _h2(
     order="GRT",
     dehomogenise=True,
     wrap=True,
+    signed_f=True,
 ):
     """H2 = G R T with the slips the keywords name (the defaults: the right answer)."""
     e2 = np.asarray(e2, dtype=float)
@@ -44,6 +45,7 @@ def _h2(
     R = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1.0]])
     eR = R @ eT
     f = eR[0] / eR[2] if dehomogenise else eR[0]
+    f = f if signed_f else abs(f)
     G = np.array([[1, 0, 0], [0, 1, 0], [g_sign / f, 0, 1.0]])
     return {"GRT": G @ R @ T, "TRG": T @ R @ G}[order]
 
@@ -118,13 +120,31 @@ _SLIPS = [
 ]
 
 
-def _hartley_diagnosis(args, got, expected) -> str:
+_ABS_F = (
+    "your f is a distance, |eR|: f is signed, the rotated epipole's u coordinate eR[0] / eR[2], "
+    "negative when the epipole lies left of the centre (as here), and G31 = -1/f needs its sign"
+)
+
+
+def _hartley_diagnosis(args, got, expected, run=None) -> str:
     problem = shape_problem(got, expected)
     if problem:
         return problem + ". H2 is the (3, 3) homography G R T."
     e2, size = args
     g = np.asarray(got, dtype=float)
     w, h = size
+    if same_up_to_scale(g, _h2(e2, size, signed_f=False), rtol=1e-6) and run is not None:
+        # f < 0 here, so |f| and G31 = +1/f give the same H2: an epipole right of the centre
+        # (f > 0) tells them apart, where |f| is right and +1/f is not
+        e_right, s_right = _hartley_cases()[1]
+        try:
+            right_ok = same_up_to_scale(
+                run(e_right, s_right), hartley_H2(e_right, s_right), rtol=1e-6
+            )
+        except Exception:  # the student's function failing there: fall back on the sign hint
+            right_ok = False
+        if right_ok:
+            return _ABS_F
     for keywords, hint in _SLIPS + [
         (
             dict(centre=(w / 2, h / 2)),
@@ -154,9 +174,11 @@ register_exercise(
         cases=_hartley_cases,
         compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),
         diagnose=_hartley_diagnosis,
+        diagnosis_runs=True,
         up_to_scale=True,
         wrong_variants=tuple((lambda e, s, k=k: _h2(e, s, **k), hint[:20]) for k, hint in _SLIPS)
-        + ((lambda e, s: _h2(e, s, centre=(s[0] / 2, s[1] / 2)), "(w/2, h/2)"),),
+        + ((lambda e, s: _h2(e, s, centre=(s[0] / 2, s[1] / 2)), "(w/2, h/2)"),)
+        + ((lambda e, s: _h2(e, s, signed_f=False), "your f is a distance"),),
         teaching=hartley_H2,
         solution_note=(
             "# camlab.rectification.rectify_uncalibrated builds the same H2, then adds Loop & Zhang's\n"
