@@ -1267,6 +1267,31 @@ def test_read_noise_with_the_quantisation_variance_removed_passes_too(capsys):
     assert check("gain_and_read_noise", emva).passed is True
 
 
+def test_quantize_image_accepts_a_loop_over_the_rows_and_columns_of_a_grey_image(capsys):
+    """Lesson 03, exercise 2's prompt says a grey (H, W) image: a solution that unpacks H, W must pass."""
+
+    def loop(image, bits):
+        H, W = image.shape
+        out = np.zeros((H, W), np.uint8 if bits <= 8 else np.uint16)
+        for v in range(H):
+            for u in range(W):
+                out[v, u] = min(max(round(image[v, u] * (2**bits - 1)), 0), 2**bits - 1)
+        return out
+
+    assert check("quantize_image", loop).passed is True
+
+
+def test_quantize_image_names_a_colour_axis_unpacked_from_a_grey_image():
+    def colour(image, bits):
+        H, W, C = image.shape
+        return np.zeros((H, W), np.uint8)
+
+    with pytest.raises(
+        AssertionError, match=r"likely cause: the test image has shape \(3, 4\), a grey"
+    ):
+        check("quantize_image", colour)
+
+
 # lesson 11: right answers in other valid forms pass
 
 
