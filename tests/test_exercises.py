@@ -1292,6 +1292,17 @@ def test_quantize_image_names_a_colour_axis_unpacked_from_a_grey_image():
         check("quantize_image", colour)
 
 
+def test_alias_frequency_accepts_other_ways_to_fold(capsys):
+    """Lesson 03, exercise 5: np.where on f % 1, or the distance to the nearest whole cycle, are right too."""
+
+    def where(f):
+        a = np.mod(f, 1)
+        return np.where(a > 0.5, 1 - a, a)
+
+    assert check("alias_frequency", where).passed is True
+    assert check("alias_frequency", lambda f: np.abs(f - np.round(f))).passed is True
+
+
 # lesson 11: right answers in other valid forms pass
 
 
