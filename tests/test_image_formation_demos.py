@@ -644,6 +644,22 @@ def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple(
     assert _fmt((0.5829,)) == "(0.5829,)" and _fmt((1.0, 2.0)) == "(1.0, 2.0)"
 
 
+def test_demosaicing_readout_gives_psnr_per_channel_beside_bilinear_and_the_zoom_error():
+    """I11-8: the readout once held only the heading; it now holds what the error maps show, in numbers."""
+    demo = digital_sensor.demosaicing()
+    demo.set(method="OpenCV VNG")
+    text = next(t for t in _texts(demo.widget) if "PSNR" in t)
+    vng, bilinear = (
+        [float(v) for v in re.search(rf"{name}\s+([\d. ]+)", text).group(1).split()]
+        for name in ("OpenCV VNG", "camlab bilinear")
+    )
+    assert len(vng) == len(bilinear) == 4 and all(
+        a > b + 3 for a, b in zip(vng, bilinear, strict=True)
+    )
+    assert abs(vng[3] - demo.state["psnr"]) < 0.05  # the same score as the title's
+    assert "zoom, mean |error| (linear):" in text
+
+
 def test_bit_depth_demo_keeps_its_noise_field_when_only_the_bit_depth_moves():
     """H11-5: the same setting twice once differed in ~81,000 pixels (new noise on every move)."""
     demo = digital_sensor.bit_depth_and_noise()

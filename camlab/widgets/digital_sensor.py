@@ -473,6 +473,29 @@ K_DEMOSAIC = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
 
 
 _SAME = "same as the sensor"
+_OPENCV_METHODS = {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng", "OpenCV edge-aware": "ea"}
+
+
+def _demosaic_readout(truth, out, reference, crop, method: str) -> str:
+    """The readout beside the demosaicing demo's sliders, all on linear values.
+
+    PSNR per channel, against camlab bilinear's, and the zoom's mean |error| per channel (what
+    its error map shows).
+    """
+    rows = []
+    for name, img in ((method, out), ("camlab bilinear", reference)):
+        scores = [sensor.psnr(truth[..., c], img[..., c], border=2) for c in range(3)]
+        scores.append(sensor.psnr(truth, img, border=2))
+        rows.append(f"{name:17s}" + "".join(f"{v:5.1f}" for v in scores))
+    error = np.abs(out[crop] - truth[crop]).reshape(-1, 3).mean(axis=0)
+    return monospace(
+        f"PSNR (dB; linear, less a 2-px border)\n{'':17s}    R    G    B  all\n"
+        + "\n".join(rows[: 1 if method == "camlab bilinear" else 2])
+        + "\nzoom, mean |error| (linear):\n"
+        + "  ".join(f"{c} {v:.3f}" for c, v in zip("RGB", error, strict=True))
+    )
+
+
 CROP = 48
 ZOOM_MAX = SIZE[0] - CROP  # the zoom's last column at the frame's last column
 ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
@@ -576,6 +599,7 @@ def demosaicing():
     box, ax_full, ax_zoom = art.box, art.ax_full, art.ax_zoom
 
     demosaiced: dict[tuple[str, str, str], tuple[np.ndarray, np.ndarray, float]] = {}
+    readout = W.HTML()
 
     def develop(pattern: str, assumed: str, method: str):
         """The raw mosaic, its demosaiced image and PSNR; pure, so kept while the zoom slider moves."""
@@ -587,18 +611,7 @@ def demosaicing():
             elif method == "camlab bilinear":
                 out = sensor.demosaic_bilinear(raw, assumed) / 255
             else:
-                out = (
-                    sensor.demosaic_opencv(
-                        raw,
-                        assumed,
-                        {
-                            "OpenCV bilinear": "bilinear",
-                            "OpenCV VNG": "vng",
-                            "OpenCV edge-aware": "ea",
-                        }[method],
-                    )
-                    / 255
-                )
+                out = sensor.demosaic_opencv(raw, assumed, _OPENCV_METHODS[method]) / 255
             out = np.clip(out, 0, 1)
             demosaiced[key] = raw, out, sensor.psnr(truth, out, border=2)
         return demosaiced[key]
@@ -631,6 +644,8 @@ def demosaicing():
             zoom_psnr=sensor.psnr(truth[crop], out[crop]),
             zoom_shows="error" if values["zoom_error"] else "image",
         )
+        reference = develop(pattern, assumed, "camlab bilinear")[1]
+        readout.value = _demosaic_readout(truth, out, reference, crop, method)
         if method == "truth":
             score = ": the reference the PSNRs compare with"
         elif assumed != pattern:  # short: this title sits between two others
@@ -639,4 +654,11 @@ def demosaicing():
             score = f": PSNR {state['psnr']:.1f} dB (linear)"
         ax_full.set_title(method + score, fontsize=10)
 
-    return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")
+    return build_demo(
+        "demosaicing",
+        controls,
+        view,
+        update,
+        title="Bayer mosaic and demosaicing",
+        extra=[readout],
+    )
