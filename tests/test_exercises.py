@@ -1974,3 +1974,12 @@ def test_rectangle_homography_from_reversed_corners_is_named_mirrored():
 
     with pytest.raises(AssertionError, match="opposite senses"):
         check("rectangle_homography", reversed_corners)
+
+
+def test_a_long_list_answer_is_summarised_as_an_array_would_be():
+    """H11-13: an image returned with .tolist() once printed about 2 KB of floats."""
+    from camlab import sensor
+
+    with pytest.raises(AssertionError) as info:
+        check("demosaic_bilinear", lambda raw, p: sensor.demosaic_bilinear(raw, p).tolist())
+    assert "<list of shape (6, 6, 3), values" in str(info.value) and len(str(info.value)) < 800
