@@ -32,15 +32,16 @@ def _side_view(fig):
     ax.set_xlabel("X (mm), right →", fontsize=8)
     ax.set_ylabel("Z (mm), forward ↑", fontsize=8, labelpad=1)
     ax.set_title(
-        "top view, to scale: the image plane (blue)\nf = 3 mm in front of the pinhole (H&Z 6.1)",
+        "top view, to scale: the image plane (black)\nf = 3 mm in front of the pinhole (H&Z 6.1)",
         fontsize=8,
     )
     ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
     ax.plot([0], [0], "o", color="k", ms=4)  # the pinhole (camera centre), at Z = 0
     ax.text(0.4, -0.3, "pinhole", fontsize=7.5, va="top")
     # the plane thick; the two marks just above it, so a 0.6 mm plane (2 µm pixels) still shows, with leaders down to it
-    (plane,) = ax.plot([], [], color=palette.BLUE, lw=3.5, solid_capstyle="butt", zorder=3)
-    (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
+    # one colour per meaning: the plane and its ends black, the field of view green, the × blue, the + orange
+    (plane,) = ax.plot([], [], color="k", lw=3.5, solid_capstyle="butt", zorder=3)
+    (rays,) = ax.plot([], [], color=palette.GREEN, lw=1)
     (leaders,) = ax.plot([], [], color="k", lw=0.8, zorder=4)
     (centre,) = ax.plot(
         [], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo(), zorder=5
@@ -48,7 +49,7 @@ def _side_view(fig):
     (principal,) = ax.plot(
         [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo(), zorder=5
     )
-    edge_text = dict(fontsize=7.5, va="top", color=palette.BLUE)
+    edge_text = dict(fontsize=7.5, va="top", color="k")
     left_label = ax.text(0, 2.6, "u = −½", ha="right", **edge_text)
     right_label = ax.text(0, 2.6, "u = W − ½", ha="left", **edge_text)
 
