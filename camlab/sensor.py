@@ -36,6 +36,7 @@ __all__ = [
     "DarkAndFlatFrames",
     "NoiseModel",
     "add_noise",
+    "alias_frequency",
     "bayer_masks",
     "check_bayer_pattern",
     "check_bits",
@@ -370,6 +371,28 @@ def dark_and_flat_frames(
     return DarkAndFlatFrames(
         darks, [(frame(level), frame(level)) for level in np.asarray(levels, float)]
     )
+
+
+def alias_frequency(f: ArrayLike) -> np.ndarray:
+    r"""The frequency that a cosine of ``f`` cycles per pixel shows once sampled at every pixel.
+
+    Sampled at the integers, :math:`\cos 2\pi f n` equals :math:`\cos 2\pi (f + m) n` and
+    :math:`\cos 2\pi (m - f) n` for every integer :math:`m` (lesson 03, section 2): the samples hold
+    only the one of these frequencies in :math:`[0, \tfrac12]`, the band below the Nyquist limit,
+    :math:`|f - \operatorname{round}(f)|`. Detail above the limit folds back about it (0.8 shows as 0.2).
+
+    Parameters
+    ----------
+    f : array_like
+        Frequencies, cycles per pixel: any real numbers (a cosine at :math:`-f` is the one at :math:`f`).
+
+    Returns
+    -------
+    ndarray
+        The frequencies the samples show, in :math:`[0, \tfrac12]`, float, ``f``'s shape.
+    """
+    f = np.asarray(f, dtype=float)
+    return np.abs(f - np.round(f))  # the nearest whole cycle per pixel is the copy f aliases with
 
 
 def sample(image: ArrayLike, factor: int, prefilter: bool = False, blur: float = 0.0) -> np.ndarray:

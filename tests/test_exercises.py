@@ -1267,6 +1267,42 @@ def test_read_noise_with_the_quantisation_variance_removed_passes_too(capsys):
     assert check("gain_and_read_noise", emva).passed is True
 
 
+def test_quantize_image_accepts_a_loop_over_the_rows_and_columns_of_a_grey_image(capsys):
+    """Lesson 03, exercise 2's prompt says a grey (H, W) image: a solution that unpacks H, W must pass."""
+
+    def loop(image, bits):
+        H, W = image.shape
+        out = np.zeros((H, W), np.uint8 if bits <= 8 else np.uint16)
+        for v in range(H):
+            for u in range(W):
+                out[v, u] = min(max(round(image[v, u] * (2**bits - 1)), 0), 2**bits - 1)
+        return out
+
+    assert check("quantize_image", loop).passed is True
+
+
+def test_quantize_image_names_a_colour_axis_unpacked_from_a_grey_image():
+    def colour(image, bits):
+        H, W, C = image.shape
+        return np.zeros((H, W), np.uint8)
+
+    with pytest.raises(
+        AssertionError, match=r"likely cause: the test image has shape \(3, 4\), a grey"
+    ):
+        check("quantize_image", colour)
+
+
+def test_alias_frequency_accepts_other_ways_to_fold(capsys):
+    """Lesson 03, exercise 5: np.where on f % 1, or the distance to the nearest whole cycle, are right too."""
+
+    def where(f):
+        a = np.mod(f, 1)
+        return np.where(a > 0.5, 1 - a, a)
+
+    assert check("alias_frequency", where).passed is True
+    assert check("alias_frequency", lambda f: np.abs(f - np.round(f))).passed is True
+
+
 # lesson 11: right answers in other valid forms pass
 
 
@@ -1937,3 +1973,12 @@ def test_rectangle_homography_from_reversed_corners_is_named_mirrored():
 
     with pytest.raises(AssertionError, match="opposite senses"):
         check("rectangle_homography", reversed_corners)
+
+
+def test_a_long_list_answer_is_summarised_as_an_array_would_be():
+    """H11-13: an image returned with .tolist() once printed about 2 KB of floats."""
+    from camlab import sensor
+
+    with pytest.raises(AssertionError) as info:
+        check("demosaic_bilinear", lambda raw, p: sensor.demosaic_bilinear(raw, p).tolist())
+    assert "<list of shape (6, 6, 3), values" in str(info.value) and len(str(info.value)) < 800

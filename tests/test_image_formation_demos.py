@@ -213,6 +213,14 @@ def test_distortion_demo_classifies_and_undistorts():
     assert np.allclose(demo.state["corner0"], ideal)
 
 
+def _texts(widget):
+    """Every text a widget and its children show (the readouts beside the sliders)."""
+    if isinstance(getattr(widget, "value", None), str):
+        yield widget.value
+    for child in getattr(widget, "children", ()):
+        yield from _texts(child)
+
+
 def test_sensor_demos_state():
     s = digital_sensor.sampling_aliasing()
     s.set(factor=6, prefilter=False)
@@ -511,12 +519,19 @@ def test_sensor_demos_read_as_the_lesson_says():
     assert (
         top.lines[4].get_xdata()[0] > 0 and -x_far_left < x_far_right
     )  # the wider half now on the right
-    # lesson 03, "Interactive: sampling and aliasing": the title's false-ring contrast is section 2's 0.35 and 0.06
+    # lesson 03, "Interactive: sampling and aliasing": the title's false-ring contrast (0.55 to 0.75 cycle/px) is
+    # section 2's 0.34 and 0.12, and box samples give about the same at every pixel size (0.14 at the default 3)
     s = digital_sensor.sampling_aliasing()
     s.set(factor=6, prefilter=False)
-    assert "contrast 0.35" in s.figure.axes[1].get_title()
+    assert (
+        "contrast 0.34" in s.figure.axes[1].get_title()
+    )  # a full-contrast cosine's 0.354, point samples
     s.set(prefilter=True)
-    assert "contrast 0.06" in s.figure.axes[1].get_title()
+    assert "contrast 0.12" in s.figure.axes[1].get_title()
+    assert any("false rings, 0.55 to 0.75 cycle/px: 0.12" in t for t in _texts(s.widget))
+    s.set(factor=3)
+    assert "contrast 0.14" in s.figure.axes[1].get_title()
+    s.set(prefilter=False)
     s.set(factor=2)  # the square is the frame's edge: drawn just inside it, so it shows
     square = s.figure.axes[1].patches[0]
     assert (
@@ -533,9 +548,12 @@ def test_sensor_demos_read_as_the_lesson_says():
         factor=6, prefilter=False, blur=0.5
     )  # a lens blur of half a pixel: the false rings all but gone
     assert (
-        "contrast 0.01" in s.figure.axes[1].get_title()
+        "contrast 0.03" in s.figure.axes[1].get_title()
         and "blur σ = 0.5 coarse px" in s.figure.axes[1].get_title()
     )
+    assert any(
+        "true rings, below 0.3 cycle/px: 0.27" in t for t in _texts(s.widget)
+    )  # costs sharpness
     d = digital_sensor.demosaicing()
     psnr = {}
     for method in ("camlab bilinear", "OpenCV VNG", "OpenCV edge-aware"):
@@ -624,6 +642,40 @@ def test_field_of_view_check_answers_the_prompts_question_and_names_a_one_tuple(
         assert check("field_of_view", field_of_view)
     assert "39.6 deg focused at infinity and 33.4 deg focused at 0.3 m" in out.getvalue()
     assert _fmt((0.5829,)) == "(0.5829,)" and _fmt((1.0, 2.0)) == "(1.0, 2.0)"
+
+
+def test_demosaicing_readout_gives_psnr_per_channel_beside_bilinear_and_the_zoom_error():
+    """I11-8: the readout once held only the heading; it now holds what the error maps show, in numbers."""
+    demo = digital_sensor.demosaicing()
+    demo.set(method="OpenCV VNG")
+    text = next(t for t in _texts(demo.widget) if "PSNR" in t)
+    vng, bilinear = (
+        [float(v) for v in re.search(rf"{name}\s+([\d. ]+)", text).group(1).split()]
+        for name in ("OpenCV VNG", "camlab bilinear")
+    )
+    assert len(vng) == len(bilinear) == 4 and all(
+        a > b + 3 for a, b in zip(vng, bilinear, strict=True)
+    )
+    assert abs(vng[3] - demo.state["psnr"]) < 0.05  # the same score as the title's
+    assert "zoom, mean |error| (linear):" in text
+
+
+def test_bit_depth_demo_keeps_its_noise_field_when_only_the_bit_depth_moves():
+    """H11-5: the same setting twice once differed in ~81,000 pixels (new noise on every move)."""
+    demo = digital_sensor.bit_depth_and_noise()
+    demo.set(bits=8, exposure=0.3, read_noise=5.0)
+    first = np.asarray(demo.figure.axes[0].images[0].get_array()).copy()
+    snr = demo.state["snr_background"]
+    demo.set(bits=12)
+    twelve = np.asarray(demo.figure.axes[0].images[0].get_array()).copy()
+    demo.set(exposure=0.02)
+    demo.set(exposure=0.3, bits=8)
+    assert np.array_equal(np.asarray(demo.figure.axes[0].images[0].get_array()), first)
+    assert demo.state["snr_background"] == snr
+    # 8 to 12 bits: only the rounding moves, at most half an 8-bit step (in sRGB, steepest in the shadows)
+    assert 0 < np.abs(twelve - first).mean() < 0.01
+    demo.set(read_noise=6.0)  # another noise setting: another field
+    assert not np.array_equal(np.asarray(demo.figure.axes[0].images[0].get_array()), first)
 
 
 def test_bit_depth_readout_says_one_code_where_the_background_has_no_spread():

@@ -152,3 +152,12 @@ def test_sample_blur_is_a_gaussian_in_coarse_pixels():
         assert kept == pytest.approx(np.exp(-2 * np.pi**2 * blur**2 * f**2), rel=0.02)
     with pytest.raises(CamlabInputError, match="blur: expected a standard deviation >= 0"):
         S.sample(image, factor, blur=-1)
+
+
+def test_alias_frequency_gives_the_same_samples_in_the_band_below_the_limit():
+    f = np.array([0.2, 0.45, 0.5, 0.55, 0.8, 1.0, 1.3, 2.2, -0.2, -1.4])
+    a = S.alias_frequency(f)
+    assert np.allclose(a, [0.2, 0.45, 0.5, 0.45, 0.2, 0.0, 0.3, 0.2, 0.2, 0.4])
+    n = np.arange(50)
+    assert np.allclose(np.cos(2 * np.pi * f[:, None] * n), np.cos(2 * np.pi * a[:, None] * n))
+    assert a.dtype == float and S.alias_frequency(0.8).shape == ()

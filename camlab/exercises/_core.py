@@ -203,6 +203,14 @@ def _fmt(value: Any) -> str:
     if isinstance(value, float) and np.isfinite(value):
         return repr(float(f"{value:.12g}"))  # 35.3, not 35.300000000000004
     if isinstance(value, (tuple, list)):
+        try:  # a long list of numbers (an image's .tolist()): summarised as an array would be
+            numbers = np.asarray(value, dtype=float)
+        except (TypeError, ValueError):
+            numbers = None
+        if numbers is not None and numbers.size > _MAX_PRINTED:
+            finite = numbers[np.isfinite(numbers)]
+            span = f", values {finite.min():.4g} .. {finite.max():.4g}" if finite.size else ""
+            return f"<{type(value).__name__} of shape {numbers.shape}{span}>"
         inner = ", ".join(_fmt(v) for v in value)
         return (
             f"[{inner}]"

@@ -346,11 +346,43 @@ def _diagnose(args, got, expected) -> str:
             "root, in DN, times the gain g (electrons per DN)"
         )
     if np.isclose(g[0], e[0], rtol=0.03):
-        return _read_noise_hint(args, g)
+        return _dark_slip(args, g[0], g[1], dark_var) or _read_noise_hint(args, g)
     return (
         "per flat pair: mean = (a.mean() + b.mean()) / 2, var = np.var(a - b) / 2 (in float); g = 1 / slope "
         "of the line var = mean / g + c fitted over all the pairs; read noise = g * sqrt(var(d1 - d2) / 2)"
     )
+
+
+def _dark_slip(args, gain: float, got: float, dark_var: float) -> str | None:
+    """The hint for a read noise built from the dark pair the wrong way round, else None.
+
+    The square root missed or misplaced, or the black level taken for Poisson signal.
+    """
+    black = _dark_mean(args[0])
+    slips = (
+        (
+            gain * dark_var,
+            "you multiplied the darks' variance var(d1 - d2) / 2 by g without its square root: the read noise "
+            "is a standard deviation, g * sqrt(var(d1 - d2) / 2)",
+        ),
+        (
+            np.sqrt(gain * dark_var),
+            "you took the square root of g * var: g converts DN to electrons and belongs outside the root, "
+            "g * sqrt(var(d1 - d2) / 2) (sqrt(g * var) is the right number only in units of sqrt(e- DN))",
+        ),
+        (
+            gain * np.sqrt(black),
+            f"you took the darks' mean, {black:.0f} DN, as a Poisson signal (noise sqrt(mean)): it is the black "
+            f"level, an offset the converter adds, with no shot noise; the read noise is the darks' temporal "
+            f"spread, g * sqrt(var(d1 - d2) / 2)",
+        ),
+        (
+            np.sqrt(gain * black),
+            f"you took the darks' mean, {black:.0f} DN, as a Poisson signal in electrons (sqrt(g * mean)): it is "
+            f"the black level, an offset with no shot noise; the read noise is g * sqrt(var(d1 - d2) / 2)",
+        ),
+    )
+    return next((hint for value, hint in slips if np.isclose(got, value, rtol=0.03)), None)
 
 
 def _read_noise_hint(args, got) -> str:
@@ -373,7 +405,8 @@ def _read_noise_hint(args, got) -> str:
         )
     return (
         "the gain is right, the read noise is not: it is the spread of the darks' difference, "
-        "g * sqrt(var(d1 - d2) / 2), in electrons (not the fit's intercept, which the black level shifts)"
+        "g * sqrt(var(d1 - d2) / 2), in electrons: the darks' difference's variance in DN**2, halved (it "
+        "holds two frames' noise), its square root, times g"
     )
 
 
@@ -424,6 +457,13 @@ def _describe(args) -> str:
         f"darks: {len(darks)} frames of {d.shape[0]} x {d.shape[1]} {d.dtype}, mean {dark_mean:.0f} DN (the black "
         f"level); flats: {len(flats)} pairs, means {min(means):.0f} .. {max(means):.0f} DN"
     )
+
+
+def _dark_form(darks, flats, read_noise):
+    """The right gain with ``read_noise(g, var, mean)`` of the dark pair: a slip in the read noise's formula."""
+    g = reference(darks, flats)[0]
+    d1, d2 = (np.asarray(d, dtype=float) for d in darks)
+    return g, read_noise(g, np.var(d1 - d2) / 2, (d1.mean() + d2.mean()) / 2)
 
 
 def _intercept_variant(darks, flats):
@@ -513,6 +553,13 @@ register_exercise(
                 "from the fit's intercept",
             ),
             (lambda d, f: reference(d, f)[::-1], "swapped"),
+            (lambda d, f: _dark_form(d, f, lambda g, v, m: g * v), "without its square root"),
+            (
+                lambda d, f: _dark_form(d, f, lambda g, v, m: np.sqrt(g * v)),
+                "belongs outside the root",
+            ),
+            (lambda d, f: _dark_form(d, f, lambda g, v, m: g * np.sqrt(m)), "as a Poisson signal"),
+            (lambda d, f: _dark_form(d, f, lambda g, v, m: np.sqrt(g * m)), "offset with no shot"),
             (lambda d, f: reference(d, f) ** [1, 2], "returned a variance"),
             (
                 lambda d, f: (

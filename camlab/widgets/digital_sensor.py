@@ -32,15 +32,16 @@ def _side_view(fig):
     ax.set_xlabel("X (mm), right →", fontsize=8)
     ax.set_ylabel("Z (mm), forward ↑", fontsize=8, labelpad=1)
     ax.set_title(
-        "top view, to scale: the image plane (blue)\nf = 3 mm in front of the pinhole (H&Z 6.1)",
+        "top view, to scale: the image plane (black)\nf = 3 mm in front of the pinhole (H&Z 6.1)",
         fontsize=8,
     )
     ax.axvline(0, color=palette.GREY, lw=0.6, ls=":")
     ax.plot([0], [0], "o", color="k", ms=4)  # the pinhole (camera centre), at Z = 0
     ax.text(0.4, -0.3, "pinhole", fontsize=7.5, va="top")
     # the plane thick; the two marks just above it, so a 0.6 mm plane (2 µm pixels) still shows, with leaders down to it
-    (plane,) = ax.plot([], [], color=palette.BLUE, lw=3.5, solid_capstyle="butt", zorder=3)
-    (rays,) = ax.plot([], [], color=palette.ORANGE, lw=1)
+    # one colour per meaning: the plane and its ends black, the field of view green, the × blue, the + orange
+    (plane,) = ax.plot([], [], color="k", lw=3.5, solid_capstyle="butt", zorder=3)
+    (rays,) = ax.plot([], [], color=palette.GREEN, lw=1)
     (leaders,) = ax.plot([], [], color="k", lw=0.8, zorder=4)
     (centre,) = ax.plot(
         [], [], "x", color=palette.BLUE, ms=6, mew=1.5, path_effects=palette.halo(), zorder=5
@@ -48,7 +49,7 @@ def _side_view(fig):
     (principal,) = ax.plot(
         [], [], "+", color=palette.ORANGE, ms=8, mew=1.5, path_effects=palette.halo(), zorder=5
     )
-    edge_text = dict(fontsize=7.5, va="top", color=palette.BLUE)
+    edge_text = dict(fontsize=7.5, va="top", color="k")
     left_label = ax.text(0, 2.6, "u = −½", ha="right", **edge_text)
     right_label = ax.text(0, 2.6, "u = W − ½", ha="left", **edge_text)
 
@@ -200,6 +201,23 @@ def _sampling_controls() -> dict:
     }
 
 
+def _ring_contrast(s: np.ndarray, k: int, r: float) -> tuple[float | None, float]:
+    """The zone plate's false and true rings' contrast in the samples ``s`` at pixel size ``k``.
+
+    The standard deviation of the samples where the larger local frequency, |f_x| or |f_y|, is 0.55 to
+    0.75 cycle per coarse px (one fixed band just beyond the Nyquist square, so every pixel size compares
+    like with like; None where the band lies beyond the frame), and below 0.3 (the true rings).
+    ``r`` is the square's half side in fine px.
+    """
+    x, y = np.meshgrid(
+        np.arange(s.shape[1]) - (s.shape[1] - 1) / 2,
+        np.arange(s.shape[0]) - (s.shape[0] - 1) / 2,
+    )
+    f = 0.5 * np.maximum(abs(x), abs(y)) * k / r  # cycles per coarse px: 0.5 on the square
+    band = (f > 0.55) & (f < 0.75)
+    return (float(s[band].std()) if band.any() else None), float(s[f < 0.3].std())
+
+
 @register(
     lesson="03",
     sweep={"factor": [1, 2, 3, 4, 6, 7, 8], "prefilter": [True, False], "blur": [0.0, 0.5, 1.0]},
@@ -214,7 +232,8 @@ def sampling_aliasing():
         (average over the pixel's area instead of a point sample) and ``blur`` (a lens blur's
         sigma, coarse px), the figure (the zone plate beside its samples with the Nyquist
         square) and ``state`` (``samples`` the sampled shape, ``nyquist_half_side`` in fine px,
-        ``alias_contrast`` the samples' standard deviation beyond the Nyquist square).
+        ``alias_contrast`` the samples' standard deviation where the local frequency is 0.55 to 0.75
+        cycle per coarse px, just beyond the Nyquist square, and ``true_contrast`` theirs below 0.3).
     """
     controls = _sampling_controls()
     view = FigureView(figsize=(9, 4))
@@ -256,6 +275,7 @@ def sampling_aliasing():
     for ax in (ax_t, ax_s):
         ax.apply_aspect()  # as a draw does: the image's box on the screen is final from here on
     view.animate(im, nyq, ax_s.title)
+    readout = W.HTML()
 
     def update(values, state):
         k = int(values["factor"])
@@ -274,17 +294,15 @@ def sampling_aliasing():
         nyq.set_visible(
             r <= cx + 1
         )  # at pixel size 1 the limit lies beyond the frame: nothing to draw
-        x, y = np.meshgrid(
-            np.arange(s.shape[1]) - (s.shape[1] - 1) / 2,
-            np.arange(s.shape[0]) - (s.shape[0] - 1) / 2,
-        )
-        outer = (
-            np.maximum(abs(x), abs(y)) * k > r * 1.1
-        )  # beyond the Nyquist square, where aliases live
+        false, true = _ring_contrast(s, k, r)
         state.update(
-            samples=s.shape,
-            nyquist_half_side=r,
-            alias_contrast=float(s[outer].std()) if outer.any() else 0.0,
+            samples=s.shape, nyquist_half_side=r, alias_contrast=false or 0.0, true_contrast=true
+        )
+        readout.value = monospace(
+            "contrast (std of the samples); a full-contrast cosine: 0.354\n"
+            f"true rings, below 0.3 cycle/px: {true:.2f}\n"
+            "false rings, 0.55 to 0.75 cycle/px: "
+            + ("-- (beyond the frame)" if false is None else f"{false:.2f}")
         )
         if (
             r > cx + 1
@@ -294,13 +312,15 @@ def sampling_aliasing():
             r >= cx
         ):  # pixel size 2: the edges reach 0.5 cycle per px, the fold's half systems show there
             where = "red square: Nyquist limit, at the frame's edge"
-        else:  # the number section 2 prints for the static figure (0.35 point, 0.06 box at 6)
+        else:  # the number section 2 prints for the static figure (0.35 point, 0.12 box at 6)
             where = f"red square: Nyquist limit; false-ring contrast {state['alias_contrast']:.2f}"
         kind = "box samples" if values["prefilter"] else "point samples"
         blurred = f", blur σ = {values['blur']:.1f} coarse px" if values["blur"] else ""
         ax_s.set_title(f"{kind}, pixel size {k} fine px{blurred}\n({where})", fontsize=10)
 
-    return build_demo("sampling_aliasing", controls, view, update, title="Sampling and aliasing")
+    return build_demo(
+        "sampling_aliasing", controls, view, update, title="Sampling and aliasing", extra=[readout]
+    )
 
 
 BACKGROUND = 0.2  # the grey around the photo, linear
@@ -370,8 +390,8 @@ def bit_depth_and_noise():
     Demo
         The demo: controls ``bits`` (bit depth), ``exposure`` (a fraction of the full well) and
         ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
-        the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` as a
-        fraction of full scale, ``electrons`` of the white, the dark uniform and the background,
+        the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` the recorded
+        image's rms difference from the true one, linear, over the whole frame, as a fraction of white, ``electrons`` of the white, the dark uniform and the background,
         ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``snr_background`` the model's and the
         measured SNR in the grey background, inf where 90 % or more of it has one code, and
         ``background_one_code`` that share).
@@ -382,10 +402,11 @@ def bit_depth_and_noise():
     clean, im, prof, ax_p, row = art.clean, art.im, art.prof, art.ax_p, art.row
     readout = W.HTML()  # numbers beside the sliders: canvas text costs ~4 ms per line per redraw
     full_well = 10000.0
-    rng = np.random.default_rng(0)
 
     def update(values, state):
         bits, expo = int(values["bits"]), float(values["exposure"])
+        # one noise field per (exposure, read noise): moving only the bit depth changes only the rounding
+        rng = np.random.default_rng([round(expo * 1e6), round(float(values["read_noise"]) * 1e3)])
         noisy = sensor.add_noise(
             clean * expo, sensor.NoiseModel(full_well, values["read_noise"]), rng
         )
@@ -438,7 +459,7 @@ def bit_depth_and_noise():
                 else f"{measured_bg:.1f}"
             )
             + "\n"
-            f"rms error {state['rms_error']:.3f} of full scale"
+            f"rms error against the true image {state['rms_error']:.3f}\n(linear, whole frame; 1 = white)"
         )
 
     return build_demo(
@@ -453,6 +474,29 @@ K_DEMOSAIC = np.array([[900.0, 0, 159.5], [0, 900.0, 119.5], [0, 0, 1]])
 
 
 _SAME = "same as the sensor"
+_OPENCV_METHODS = {"OpenCV bilinear": "bilinear", "OpenCV VNG": "vng", "OpenCV edge-aware": "ea"}
+
+
+def _demosaic_readout(truth, out, reference, crop, method: str) -> str:
+    """The readout beside the demosaicing demo's sliders, all on linear values.
+
+    PSNR per channel, against camlab bilinear's, and the zoom's mean |error| per channel (what
+    its error map shows).
+    """
+    rows = []
+    for name, img in ((method, out), ("camlab bilinear", reference)):
+        scores = [sensor.psnr(truth[..., c], img[..., c], border=2) for c in range(3)]
+        scores.append(sensor.psnr(truth, img, border=2))
+        rows.append(f"{name:17s}" + "".join(f"{v:5.1f}" for v in scores))
+    error = np.abs(out[crop] - truth[crop]).reshape(-1, 3).mean(axis=0)
+    return monospace(
+        f"PSNR (dB; linear, less a 2-px border)\n{'':17s}    R    G    B  all\n"
+        + "\n".join(rows[: 1 if method == "camlab bilinear" else 2])
+        + "\nzoom, mean |error| (linear):\n"
+        + "  ".join(f"{c} {v:.3f}" for c, v in zip("RGB", error, strict=True))
+    )
+
+
 CROP = 48
 ZOOM_MAX = SIZE[0] - CROP  # the zoom's last column at the frame's last column
 ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
@@ -556,6 +600,7 @@ def demosaicing():
     box, ax_full, ax_zoom = art.box, art.ax_full, art.ax_zoom
 
     demosaiced: dict[tuple[str, str, str], tuple[np.ndarray, np.ndarray, float]] = {}
+    readout = W.HTML()
 
     def develop(pattern: str, assumed: str, method: str):
         """The raw mosaic, its demosaiced image and PSNR; pure, so kept while the zoom slider moves."""
@@ -567,18 +612,7 @@ def demosaicing():
             elif method == "camlab bilinear":
                 out = sensor.demosaic_bilinear(raw, assumed) / 255
             else:
-                out = (
-                    sensor.demosaic_opencv(
-                        raw,
-                        assumed,
-                        {
-                            "OpenCV bilinear": "bilinear",
-                            "OpenCV VNG": "vng",
-                            "OpenCV edge-aware": "ea",
-                        }[method],
-                    )
-                    / 255
-                )
+                out = sensor.demosaic_opencv(raw, assumed, _OPENCV_METHODS[method]) / 255
             out = np.clip(out, 0, 1)
             demosaiced[key] = raw, out, sensor.psnr(truth, out, border=2)
         return demosaiced[key]
@@ -611,6 +645,8 @@ def demosaicing():
             zoom_psnr=sensor.psnr(truth[crop], out[crop]),
             zoom_shows="error" if values["zoom_error"] else "image",
         )
+        reference = develop(pattern, assumed, "camlab bilinear")[1]
+        readout.value = _demosaic_readout(truth, out, reference, crop, method)
         if method == "truth":
             score = ": the reference the PSNRs compare with"
         elif assumed != pattern:  # short: this title sits between two others
@@ -619,4 +655,11 @@ def demosaicing():
             score = f": PSNR {state['psnr']:.1f} dB (linear)"
         ax_full.set_title(method + score, fontsize=10)
 
-    return build_demo("demosaicing", controls, view, update, title="Bayer mosaic and demosaicing")
+    return build_demo(
+        "demosaicing",
+        controls,
+        view,
+        update,
+        title="Bayer mosaic and demosaicing",
+        extra=[readout],
+    )

@@ -209,7 +209,9 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     if nan:
         return nan
     problem = not_an_array(got) or shape_problem(got, expected)
-    ring = not problem and _ring_only(raw, got, expected)
+    ring = not problem and (
+        _legacy_opencv_name(raw, pattern, got, expected) or _ring_only(raw, got, expected)
+    )
     if ring:
         return ring
     if problem:
@@ -240,6 +242,32 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     ):
         return f"you rounded the interpolated values to whole numbers: {whole}; return them unrounded, as floats"
     return _interpolation_cause(raw, pattern, g, e)
+
+
+def _legacy_opencv_name(raw, pattern, got, expected) -> str | None:
+    """The hint for OpenCV's old Bayer name: red and blue swapped inside, to the rounding of its codes.
+
+    The old ``COLOR_BayerRG2RGB`` names a pattern by its 2nd row's 2nd and 3rd pixels, so it reads the
+    pattern turned by 180 degrees: RGGB as BGGR, which swaps red and blue.
+    """
+    g, e = np.asarray(got, dtype=float), np.asarray(expected)
+    if min(e.shape[:2]) < 3 or not np.isfinite(g).all():
+        return None
+    integer = np.issubdtype(np.asarray(raw).dtype, np.integer)
+    tol = 0.5 + 1e-9 if integer else 1.01 * max(1.0, float(np.abs(e).max())) / 255
+    inner = (slice(1, -1), slice(1, -1))
+    swapped = g[..., ::-1]
+    if np.allclose(swapped, e, rtol=0, atol=tol) or not np.allclose(
+        swapped[inner], e[inner], rtol=0, atol=tol
+    ):  # swapped everywhere is BGR or 1-based masks (the image slips); OpenCV's ring differs
+        return None
+    return (
+        f"red and blue are swapped, and the outermost ring is filled OpenCV's way: cv2.cvtColor with an old "
+        f"Bayer name? COLOR_Bayer{pattern[:2]}2RGB names the pattern by its 2nd row's 2nd and 3rd pixels, so it "
+        f"means {pattern[::-1]}, not {pattern} (the Pitfalls); the four-letter COLOR_Bayer{pattern}2RGB reads it "
+        f"right, but OpenCV still fills the ring its own way: write the normalised convolution yourself, "
+        f"c = k * (m r) / (k * m)"
+    )
 
 
 def _ring_only(raw, got, expected) -> str | None:
@@ -492,6 +520,7 @@ register_exercise(
         ndarray_only=True,
         wrong_variants=(
             (_zero_padded_demosaic, "border"),
+            (lambda raw, pattern: opencv_demosaic(raw, pattern[::-1]), "an old Bayer name"),
             (
                 lambda raw, pattern: sensor.demosaic_bilinear(
                     raw, "GRBG" if pattern == "RGGB" else "RGGB"

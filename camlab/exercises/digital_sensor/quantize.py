@@ -13,12 +13,25 @@ from .._core import Exercise, Mistake, first_mistake, register_exercise
 
 def _quantize_cases():
     rng = np.random.default_rng(3)
+    # grey images (H, W), as the prompt says: a solution that starts with H, W = image.shape must run
     return [
-        (np.linspace(0, 1, 11), 2),
+        (np.linspace(0, 1, 12).reshape(3, 4), 2),
         (rng.uniform(0, 1, (4, 5)), 8),
-        (np.array([0.0, 0.25, 0.5, 0.75, 1.0, 1.3, -0.2]), 3),
-        (rng.uniform(0, 1, 20), 12),
+        (np.array([[0.0, 0.25, 0.5, 0.75], [1.0, 1.3, -0.2, 0.1]]), 3),
+        (rng.uniform(0, 1, (4, 5)), 12),
     ]
+
+
+def _unpack_hint(exc: Exception, args: tuple) -> str:
+    """The likely cause when unpacking ``image.shape`` fails: the test images are grey, (H, W)."""
+    if isinstance(exc, ValueError) and "unpack" in str(exc):
+        shape = np.shape(args[0])
+        return (
+            f"the test image has shape {shape}, a grey image (H, W) with no colour axis: unpack it as "
+            f"H, W = image.shape, or, simpler, work on the whole array at once (np.round(image * (2**bits - 1)), "
+            f"np.clip), which suits any shape"
+        )
+    return ""
 
 
 def not_an_array(got) -> str | None:
@@ -370,6 +383,7 @@ register_exercise(
             isinstance(got, np.ndarray) and got.dtype == exp.dtype and np.array_equal(got, exp)
         ),
         diagnose=_quantize_diagnosis,
+        exception_hint=_unpack_hint,
         wrong_variants=(
             (
                 lambda img, bits: np.clip(np.rint(img * (bits - 1)), 0, bits - 1).astype(np.uint8),
