@@ -194,9 +194,9 @@ def _figure() -> SimpleNamespace:
         [], [], "o", mfc="white", mec="0.1", mew=1.5, ms=7, label="this tilt (both edges)"
     )
     ax_plot.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))  # 0.1, 1, 10, not 10^-1
-    ax_plot.legend(
-        fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2
-    )  # below: never on a curve
+    view.fig.legend(  # one row across the whole figure, below every panel: never on a curve
+        *ax_plot.get_legend_handles_labels(), loc="outside lower center", ncols=5, fontsize=7
+    )
     ax_plot.set_title(" ", fontsize=9)  # the distance, set by update
     view.animate(corners, edge, edge_x, total, pose, picks, across, here, ax_plot.title)
     view.animate(side.rays, side.axis, side.eye)
