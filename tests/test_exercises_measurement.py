@@ -140,3 +140,27 @@ def test_point_covariance_accepts_one_stacked_product(capsys):
         return J @ block_diag(Sigma_A, Sigma_B, sigma_u**2 * np.eye(4)) @ J.T
 
     assert check("point_covariance", stacked).passed is True
+
+
+def test_point_covariance_prints_tiny_covariances_in_significant_digits():
+    from camlab.exercises.point_covariance import point_covariance
+
+    def halved(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):  # sigma_u / 2: a range taken as 2 sigma
+        return point_covariance(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u / 2)
+
+    with pytest.raises(AssertionError) as info:
+        check("point_covariance", halved)
+    message = str(info.value)
+    got = message.split("got", 1)[1].split("expected", 1)[0]
+    assert "e-0" in got and "0.0000" not in got, message  # about 1e-8 m^2, never all zeros
+    assert "sigma_u / 2" in message, message
+
+
+def test_point_covariance_names_the_transposed_product():
+    def transposed(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):  # J^T Sigma J: the shapes clash
+        return J_A.T @ Sigma_A @ J_A + J_B.T @ Sigma_B @ J_B + sigma_u**2 * J_u @ J_u.T
+
+    with pytest.raises(AssertionError) as info:
+        check("point_covariance", transposed)
+    message = str(info.value)
+    assert "J_A @ Sigma_A @ J_A.T" in message and "points as rows" not in message, message

@@ -374,6 +374,21 @@ def _variant(name):
     return mistake_variant(_MISTAKES, name, _context)
 
 
+def _describe(args) -> str:
+    """The test input in one line: H_of is a function, shown by what it returns, never by its address."""
+    H_of, Sigma_p, a, b, sigma_u = args
+    H0 = np.asarray(H_of(np.zeros(6)), dtype=float)
+    S = np.asarray(Sigma_p, dtype=float)
+
+    def row(v):
+        return "[" + ", ".join(f"{x:.4f}" for x in np.ravel(v)) + "]"
+
+    return (
+        f"(H_of, a function: H_of(np.zeros(6)) = [{', '.join(row(r) for r in H0)}]; Sigma_p (6, 6), "
+        f"entries {S.min():.3g} .. {S.max():.3g}; a = {row(a)}, b = {row(b)}, sigma_u = {sigma_u:g})"
+    )
+
+
 register_exercise(
     Exercise(
         name="length_sigma",
@@ -382,6 +397,7 @@ register_exercise(
         cases=_cases,
         compare=same_number(rtol=1e-4),
         diagnose=_diagnosis,
+        describe_input=_describe,
         wrong_variants=(
             (_variant("variance"), "square root"),
             (_variant("sigma_u not squared"), "sigma_u^2 belongs"),

@@ -125,6 +125,8 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         + sigma_u**2 * u,
         averaged=(a + b) / 2 + sigma_u**2 * u,
         picks_diagonal=a + b + sigma_u**2 * np.diag(np.diag(u)),
+        picks_halved=a + b + (sigma_u / 2) ** 2 * u,
+        sigma_A_twice=a + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
     )
 
 
@@ -221,6 +223,19 @@ _MISTAKES = (
         "coordinates each move the point along a slanted direction), which give the ellipsoid its tilt.",
     ),
     Mistake(
+        "sigma_u halved",
+        lambda c: c.picks_halved,
+        "your picking term is a quarter of the right one, as if each coordinate's noise were sigma_u / 2 "
+        "(a +-sigma_u range taken as 2 sigma?): sigma_u is the one-sigma noise of each coordinate, so the "
+        "term is sigma_u**2 * J_u @ J_u.T.",
+    ),
+    Mistake(
+        "Sigma_A for both",
+        lambda c: c.sigma_A_twice,
+        "photo B's term uses Sigma_A: each pose has its own covariance, solved from its own photo's "
+        "corners, so the second term is J_B @ Sigma_B @ J_B.T.",
+    ),
+    Mistake(
         "millimetres",
         lambda c: c.mm,
         "your covariance is 10^6 times too big, in mm^2: the Jacobians are in metres, so Sigma_X is "
@@ -265,6 +280,18 @@ def _diagnosis(args, got, expected) -> str:
     )
 
 
+def _exception_hint(exc: Exception, args: tuple) -> str:
+    """J.T @ Sigma @ J for J @ Sigma @ J.T: the shapes clash inside the matmul."""
+    if not (isinstance(exc, ValueError) and "matmul" in str(exc)):
+        return ""
+    return (
+        "the shapes do not fit: J_A is (3, 6), one row per coordinate of the point, one column per pose "
+        "parameter, so forward propagation is J_A @ Sigma_A @ J_A.T, (3, 6) (6, 6) (6, 3) = (3, 3); "
+        "in J_A.T @ Sigma_A @ J_A (a transpose on the wrong side) the (6, 3) J_A.T cannot multiply the "
+        "(6, 6) Sigma_A. The same holds for J_B, and the picking term is J_u @ J_u.T, not J_u.T @ J_u."
+    )
+
+
 def _elementwise_root(*args):
     """A slip: an elementwise square root of the covariance (NaN where an entry is negative)."""
     with np.errstate(invalid="ignore"):
@@ -283,6 +310,7 @@ register_exercise(
         cases=_cases,
         compare=same_array(rtol=1e-6, atol=0),
         diagnose=_diagnosis,
+        exception_hint=_exception_hint,
         wrong_variants=(
             (_variant("sigma_u not squared"), "variance belongs"),
             (_variant("no picking term"), "left out the picking"),
@@ -300,6 +328,16 @@ register_exercise(
             (_variant("diagonal of Sigma only"), "only the diagonal of Sigma_A"),
             (_variant("poses averaged"), "averaged"),
             (_variant("picking diagonal"), "only the diagonal of the picking"),
+            (_variant("sigma_u halved"), "sigma_u / 2"),
+            (_variant("Sigma_A for both"), "photo B's term uses Sigma_A"),
+            (
+                (
+                    lambda J_A, S_A, J_B, S_B, J_u, s: (
+                        J_A.T @ S_A @ J_A + J_B.T @ S_B @ J_B + s**2 * J_u @ J_u.T
+                    )
+                ),
+                "the shapes do not fit",
+            ),
             (_elementwise_root, "NaN"),
             ((lambda J_A, S_A, J_B, S_B, J_u, s: J_u.T @ J_u), "inputs' space"),
             ((lambda *a: np.diag(point_covariance(*a))), "the variances alone"),

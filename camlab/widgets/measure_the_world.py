@@ -128,9 +128,16 @@ def _side_view(ax) -> SimpleNamespace:
     ax.grid(alpha=0.3)
     ax.set_title("side view: the camera (orange)", fontsize=9)
     ax.axhline(0, color="0.3", lw=1)  # the table
-    ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=4, solid_capstyle="butt")  # the board
-    ax.plot(OBJECT[:, 1], [0.0, 0.0], "-", color=palette.PURPLE, lw=2)  # the edge along the slope
-    ax.plot(OBJECT_ACROSS[0, 1], 0.0, "s", color=palette.BROWN, ms=4)  # across: seen end-on
+    # the purple edge lies beside the board, so behind it in this view: drawn wide under a thin board
+    ax.plot(
+        OBJECT[:, 1], [0.0, 0.0], "-", color=palette.PURPLE, lw=7, solid_capstyle="butt", zorder=2
+    )
+    ax.plot(
+        [-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=2, solid_capstyle="butt", zorder=3
+    )  # the board
+    ax.plot(
+        OBJECT_ACROSS[0, 1], 0.0, "s", color=palette.BROWN, ms=6, zorder=4
+    )  # across: seen end-on
     (rays,) = ax.plot([], [], "-", color=palette.ORANGE, lw=1)  # the photo's top and bottom rows
     (axis,) = ax.plot([], [], "--", color="0.4", lw=1)  # the optical axis, to the board's centre
     (eye,) = ax.plot([], [], "o", color=palette.ORANGE, ms=6)
@@ -187,9 +194,9 @@ def _figure() -> SimpleNamespace:
         [], [], "o", mfc="white", mec="0.1", mew=1.5, ms=7, label="this tilt (both edges)"
     )
     ax_plot.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))  # 0.1, 1, 10, not 10^-1
-    ax_plot.legend(
-        fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncols=2
-    )  # below: never on a curve
+    view.fig.legend(  # one row across the whole figure, below every panel: never on a curve
+        *ax_plot.get_legend_handles_labels(), loc="outside lower center", ncols=5, fontsize=7
+    )
     ax_plot.set_title(" ", fontsize=9)  # the distance, set by update
     view.animate(corners, edge, edge_x, total, pose, picks, across, here, ax_plot.title)
     view.animate(side.rays, side.axis, side.eye)
