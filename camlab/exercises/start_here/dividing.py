@@ -135,8 +135,8 @@ DIVIDE_MISTAKES = (
         "rounded to decimals",
         lambda s: _decimals(s) is not None,
         lambda s: (
-            f"you rounded the result to {_decimals(s)} decimals (np.round(..., {_decimals(s)})): 5 / 0.7 is "
-            "7.142857..., not a short decimal; return the full floats and round only when you print"
+            f"you rounded the result to {_decimals(s)} decimal{'s' * (_decimals(s) > 1)} (np.round(..., {_decimals(s)})): a quotient "
+            "such as 5 / 0.7 = 7.142857... has endless decimals; return the full floats, round only to print"
         ),
     ),
     Mistake(
