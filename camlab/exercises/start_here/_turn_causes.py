@@ -132,8 +132,13 @@ def notebook_centre(c: np.ndarray, W: int, H: int) -> str:
     return ""
 
 
-def centre_cause(c: np.ndarray, W: int, H: int) -> str:
-    """Why ``c`` is not the centre of a ``W`` x ``H`` image: a notebook variable, else the first of :data:`CENTRE_MISTAKES`."""
+def centre_cause(c: np.ndarray, W: int, H: int, X: np.ndarray | None = None) -> str:
+    """Why ``c`` is not the centre of a ``W`` x ``H`` image: a notebook variable, the mean of the points ``X``, else the first of :data:`CENTRE_MISTAKES`."""
+    if X is not None and np.allclose(c, np.mean(X, axis=0)):
+        return (
+            f"{numbers(c)} is the mean of the points X (X.mean(axis=0)), not the image's centre: the centre comes "
+            f"from img.shape, ((W - 1)/2, (H - 1)/2) = ({(W - 1) / 2:g}, {(H - 1) / 2:g}), whatever the points"
+        )
     hint = notebook_centre(c, W, H) or first_mistake(
         CENTRE_MISTAKES, SimpleNamespace(W=W, H=H), c, _same_centre
     )
@@ -350,6 +355,11 @@ VALUE_MISTAKES = (
         for d in (0.5, -0.5)
     ),
     Mistake(
+        "an interpolated read outside the image",
+        lambda s: _outside_read(s) is not None,
+        lambda s: _outside_read_hint(s),
+    ),
+    Mistake(
         "read at the turned points",
         lambda s: (
             _read_turned(s, lambda t: np.rint(t).astype(int))
@@ -359,6 +369,33 @@ VALUE_MISTAKES = (
         "img[v, u] with u, v = X[:, 0], X[:, 1]",
     ),
 )
+
+
+def _outside_read(s) -> int | None:
+    """The first point a hair outside the image that read 0, when every wrong value is such a point (else None).
+
+    An interpolating read (scipy's ``map_coordinates``, ``cv2.remap``) returns its fill value, 0, at a
+    computed 5.000000000000001 past the last row H - 1 = 5, though the pixel is there after rounding.
+    """
+    if s.values.shape != (s.n,):
+        return None
+    wrong = ~np.isclose(s.values, s.img[s.v, s.u])
+    hair = np.any((s.X < 0) | (s.X > [s.W - 1, s.H - 1]), axis=1) & np.all(
+        np.abs(s.X - np.rint(s.X)) < 1e-6, axis=1
+    )
+    if wrong.any() and np.all(hair[wrong]) and np.allclose(s.values[wrong], 0):
+        return int(np.argmax(wrong))
+    return None
+
+
+def _outside_read_hint(s) -> str:
+    k = _outside_read(s)
+    return (
+        f"X[{k}] = ({numbers(s.X[k, 0])}, {numbers(s.X[k, 1])}) lies a hair outside the image (its pixel centres run "
+        f"0 .. {s.W - 1} by 0 .. {s.H - 1}), and you read 0 there: an interpolating read (scipy's map_coordinates, "
+        "cv2.remap) gives its fill value outside. The points sit on pixel centres: round, then index, "
+        "img[v, u] with u, v = np.rint(X).astype(int).T"
+    )
 
 
 def _first_wrong_value(s) -> str:
@@ -391,6 +428,15 @@ def values_cause(
 
 
 # -- the turned points --------------------------------------------------------------------------------
+
+
+def _decimals(s) -> int | None:
+    """The k in 1..6 with the answer = the right points rounded to k decimals, if there is one."""
+    return next((k for k in range(1, 7) if np.allclose(s.got, np.round(s.turned, k))), None)
+
+
+def _mean_of_points(s) -> np.ndarray:
+    return s.X.mean(axis=0)
 
 
 def _inverse_turn(s):
@@ -478,6 +524,15 @@ TURN_MISTAKES = (
         lambda s: np.rint(s.turned),
         "right, then rounded to whole pixels (np.round or np.rint): the turned points are points, not pixel "
         "indices, so keep their fractions; round only to index an image",
+    ),
+    Mistake(
+        "rounded to decimals",
+        lambda s: None if _decimals(s) is None else np.round(s.turned, _decimals(s)),
+        lambda s: (
+            f"right, then rounded to {_decimals(s)} decimal{'s' * (_decimals(s) > 1)} "
+            f"(np.round(..., {_decimals(s)})): the moved points have endless decimals (cos 30° = 0.8660...); "
+            "return the full floats and round only to print"
+        ),
     ),
     Mistake(
         "cast to int",
@@ -573,6 +628,14 @@ TURN_MISTAKES = (
             f"you turned about {numbers(s.c + s.half)}, {_half_off(s.half)} the centre c = {numbers(s.c)} you "
             "returned (it is right): a 0.5 crept into the turn, as (X + 0.5 - c) @ A.T + c - 0.5 or Pillow's centre "
             "(W / 2, H / 2) give. Pixel centres are whole numbers here (section 3.4): (X - c) @ A.T + c"
+        ),
+    ),
+    Mistake(
+        "about the mean of the points",
+        lambda s: (s.X - _mean_of_points(s)) @ s.A.T + _mean_of_points(s),
+        lambda s: (
+            f"you moved the points about their mean, {numbers(_mean_of_points(s))} (X.mean(axis=0)), not about the "
+            "image's centre c: it comes from img.shape, ((W - 1)/2, (H - 1)/2), whatever the points"
         ),
     ),
     *(

@@ -162,7 +162,7 @@ def _rt_diagnose(args, got, expected) -> str:
                 "np.array([(W - 1) / 2, (H - 1) / 2]) (or flatten yours, c.ravel())"
             )
         else:
-            causes.append(f"the centre: {centre_cause(c, W, H)}")
+            causes.append(f"the centre: {centre_cause(c, W, H, X)}")
     if not same(values, expected[1]):
         causes.append(f"the values: {values_cause(values, img, X, expected[2])}")
     if not same(turned, expected[2]):
@@ -224,6 +224,14 @@ def _rt_wrong(centre=None, read=None, turn=None):
         return c, values, turned
 
     return wrong
+
+
+def _interpolated_read(img, X, A):
+    """A read that gives 0 a hair outside the pixel centres, as map_coordinates does (a wrong variant for the tests)."""
+    H, W = img.shape
+    c, values, turned = read_and_turn(img, X, A)
+    inside = np.all((X >= 0) & (X <= [W - 1, H - 1]), axis=1)
+    return c, np.where(inside, values, 0), turned
 
 
 def _float_index(img, X, A):
@@ -290,6 +298,15 @@ register_exercise(
                 "the turned points came back as a list: return a numpy array of shape (N, 2)",
             ),
             (_rt_wrong(centre=lambda W, H: (W / 2, H / 2)), "you used (W / 2, H / 2)"),
+            (
+                _rt_wrong(turn=lambda X, A, c: ((X - c) @ A.T + c).round(2)),
+                "right, then rounded to 2 decimals",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - X.mean(0)) @ A.T + X.mean(0)),
+                "you moved the points about their mean",
+            ),
+            (_interpolated_read, "an interpolating read (scipy's map_coordinates, cv2.remap)"),
             (_rt_wrong(centre=lambda W, H: (W // 2, H // 2)), "W // 2"),
             (_rt_wrong(centre=lambda W, H: ((W + 1) / 2, (H + 1) / 2)), "counted from 1"),
             (
