@@ -213,7 +213,7 @@ def _shift_mistake(dv: int, du: int) -> Mistake:
 
 
 def _read_turned(s, to_int) -> bool:
-    """Whether the values were read at the turned points (rounded by ``to_int``) instead of at X."""
+    """Whether the values were read at the moved points (rounded by ``to_int``) instead of at X."""
     if s.turned is None:
         return False
     uu, vv = to_int(s.turned).T
@@ -360,12 +360,12 @@ VALUE_MISTAKES = (
         lambda s: _outside_read_hint(s),
     ),
     Mistake(
-        "read at the turned points",
+        "read at the moved points",
         lambda s: (
             _read_turned(s, lambda t: np.rint(t).astype(int))
             or _read_turned(s, lambda t: t.astype(int))
         ),
-        "you read the values at the turned points: read them at the points X themselves, before the turn, "
+        "you read the values at the moved points: read them at the points X themselves, before the move, "
         "img[v, u] with u, v = X[:, 0], X[:, 1]",
     ),
 )
@@ -427,7 +427,7 @@ def values_cause(
     return first_mistake(VALUE_MISTAKES, s) or _first_wrong_value(s)
 
 
-# -- the turned points --------------------------------------------------------------------------------
+# -- the moved points --------------------------------------------------------------------------------
 
 
 def _decimals(s) -> int | None:
@@ -499,7 +499,7 @@ def _about_half_off(s):
     return None
 
 
-# Checked in order (answer against answer, np.allclose) on the turned points, for the points ``s.X``,
+# Checked in order (answer against answer, np.allclose) on the moved points, for the points ``s.X``,
 # the matrix ``s.A``, the right centre ``s.c`` and the image size ``s.W`` x ``s.H``.
 TURN_MISTAKES = (
     Mistake(
@@ -511,18 +511,18 @@ TURN_MISTAKES = (
     Mistake(
         "only X - c",
         lambda s: s.X - s.c,
-        "you moved the centre to the origin, X - c, and stopped: then turn by A and move back, (X - c) @ A.T + c",
+        "you moved the centre to the origin, X - c, and stopped: then apply A and move back, (X - c) @ A.T + c",
     ),
     Mistake(
         "u and v swapped",
         lambda s: s.turned[:, ::-1],
-        "each of your turned points is (v, u), its two numbers swapped: points are rows (u, v), like X, so keep "
+        "each of your moved points is (v, u), its two numbers swapped: points are rows (u, v), like X, so keep "
         "the columns in that order: (X - c) @ A.T + c",
     ),
     Mistake(
         "rounded",
         lambda s: np.rint(s.turned),
-        "right, then rounded to whole pixels (np.round or np.rint): the turned points are points, not pixel "
+        "right, then rounded to whole pixels (np.round or np.rint): the moved points are points, not pixel "
         "indices, so keep their fractions; round only to index an image",
     ),
     Mistake(
@@ -537,7 +537,7 @@ TURN_MISTAKES = (
     Mistake(
         "cast to int",
         lambda s: np.trunc(s.turned),
-        "right, then cast to int (.astype(int) or int()), which drops the fractions: the turned points are points, "
+        "right, then cast to int (.astype(int) or int()), which drops the fractions: the moved points are points, "
         "not pixel indices, so keep them as floats; round only to index an image",
     ),
     Mistake(
@@ -560,38 +560,38 @@ TURN_MISTAKES = (
     Mistake(
         "about the origin",
         lambda s: s.X @ s.A.T,
-        "you turned about the origin (0, 0), the top-left pixel's centre: turn about the image's centre, c + A (x - c): (X - c) @ A.T + c",
+        "you moved the points about the origin (0, 0), the top-left pixel's centre: move them about the image's centre, c + A (x - c): (X - c) @ A.T + c",
     ),
     Mistake(
         "about the origin, X @ A",
         lambda s: s.X @ s.A,
-        "you turned about the origin, and X @ A applies A's transpose: subtract the centre, turn with X @ A.T, add it back: (X - c) @ A.T + c",
+        "you moved the points about the origin, and X @ A applies A's transpose: subtract the centre, apply A with X @ A.T, add it back: (X - c) @ A.T + c",
     ),
     Mistake(
         "the centre not added back",
         lambda s: (s.X - s.c) @ s.A.T,
-        "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c",
+        "you forgot to add the centre back after applying A: c + A (x - c), so (X - c) @ A.T + c",
     ),
     Mistake(
         "the centre not subtracted",
         lambda s: s.X @ s.A.T + s.c,
-        "you added the centre after the turn but never subtracted it before: move c to the origin first, "
+        "you added the centre after applying A but never subtracted it before: move c to the origin first, "
         "c + A (x - c), so (X - c) @ A.T + c",
     ),
     Mistake(
         "the centre subtracted twice",
         lambda s: (s.X - s.c) @ s.A.T - s.c,
-        "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c",
+        "add the centre back after applying A (you subtracted it twice): (X - c) @ A.T + c",
     ),
     Mistake(
         "a sign flip",
         lambda s: s.c - (s.X - s.c) @ s.A.T,
-        "a sign flip: c - A (x - c) turns and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c",
+        "a sign flip: c - A (x - c) maps and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c",
     ),
     Mistake(
         "the signs swapped",
         lambda s: (s.X + s.c) @ s.A.T - s.c,
-        "the signs are swapped: move the centre to the origin first, X - c, then turn, then add c back: (X - c) @ A.T + c",
+        "the signs are swapped: move the centre to the origin first, X - c, then apply A, then add c back: (X - c) @ A.T + c",
     ),
     Mistake(
         "y flipped",
@@ -618,15 +618,15 @@ TURN_MISTAKES = (
         ),
         (
             "you applied inv(A) where A itself is to be applied, (X - c) @ inv(A): for a rotation inv(A) = A.T, so it "
-            "passes on a turn, but for any other A (this one) it is another move: x' = c + A (x - c), (X - c) @ A.T + c"
+            "passes on a rotation, but for any other A (this one) it is another move: x' = c + A (x - c), (X - c) @ A.T + c"
         ),
     ),
     Mistake(
         "about c, half a pixel off",
         _about_half_off,
         lambda s: (
-            f"you turned about {numbers(s.c + s.half)}, {_half_off(s.half)} the centre c = {numbers(s.c)} you "
-            "returned (it is right): a 0.5 crept into the turn, as (X + 0.5 - c) @ A.T + c - 0.5 or Pillow's centre "
+            f"you moved the points about {numbers(s.c + s.half)}, {_half_off(s.half)} the centre c = {numbers(s.c)} you "
+            "returned (it is right): a 0.5 crept into the move, as (X + 0.5 - c) @ A.T + c - 0.5 or Pillow's centre "
             "(W / 2, H / 2) give. Pixel centres are whole numbers here (section 3.4): (X - c) @ A.T + c"
         ),
     ),
@@ -644,11 +644,11 @@ TURN_MISTAKES = (
             _about(centre, transposed),
             lambda s, centre=centre, transposed=transposed: (
                 (
-                    f"you turned about {numbers(centre.answer(s))}, not the image's centre: fix c first "
-                    "(above), then check the turn"
+                    f"you moved the points about {numbers(centre.answer(s))}, not the image's centre: fix c first "
+                    "(above), then check the move"
                     if s.centre_named
-                    else f"you turned about {numbers(centre.answer(s))}, not about the centre c = {numbers(s.c)} "
-                    f"you returned (it is right); in the turn, {centre.hint}"
+                    else f"you moved the points about {numbers(centre.answer(s))}, not about the centre c = {numbers(s.c)} "
+                    f"you returned (it is right); in the move, {centre.hint}"
                 )
                 + ("; and X @ A applies A's transpose: X @ A.T" if transposed else "")
             ),
@@ -677,7 +677,7 @@ def turned_cause(
     if t.shape == (2, n) and n != 2:
         return "one row per point: A @ X.T gives the points as columns; transpose back, (A @ X.T).T, or write X @ A.T"
     if t.shape != (n, 2):
-        return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
+        return f"the moved points are rows, shape ({n}, 2), like X; got {t.shape}"
     s = SimpleNamespace(
         X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c, centre_named=centre_named, got=t
     )
@@ -688,15 +688,15 @@ def turned_cause(
         rest = first_mistake(TURN_MISTAKES, s, t, np.allclose)
         if not rest and np.allclose(np.abs(shift[0]), 0.5):
             return (
-                f"every point is off by {numbers(shift[0])}, half a pixel: the turn is right, but done in Pillow's "
+                f"every point is off by {numbers(shift[0])}, half a pixel: the move by A is right, but done in Pillow's "
                 "or COLMAP's coordinates, (u + 0.5, v + 0.5), where whole numbers are pixel corners (section 3.4), "
                 "and not converted back (or a 0.5 was added): here pixel centres are whole numbers, (X - c) @ A.T + c"
             )
         return rest or (
-            f"every point is off by the same shift, {numbers(shift[0].round(4))}: the turn is right, but the centre "
+            f"every point is off by the same shift, {numbers(shift[0].round(4))}: the move by A is right, but the centre "
             "subtracted and the one added back differ (or a constant was added): (X - c) @ A.T + c, the same c twice"
         )
     return (
         first_mistake(TURN_MISTAKES, s, t, np.allclose)
-        or "turn each row about the centre: x' = c + A (x - c), for rows (X - c) @ A.T + c"
+        or "move each row about the centre by A: x' = c + A (x - c), for rows (X - c) @ A.T + c"
     )
