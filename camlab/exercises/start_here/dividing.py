@@ -288,6 +288,17 @@ def _follow_up(run) -> str | None:
     return None
 
 
+def _success_note(run) -> str:
+    """The line under the congratulation: the w = 0 test passed too, and what its row came back as."""
+    try:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            row = np.asarray(run(_WITH_DIRECTION.copy()), dtype=float)[1]
+        shown = "[" + ", ".join(f"{v:g}" for v in row) + "]"
+    except AssertionError:  # Python's x / 0.0: a ZeroDivisionError, which also says 'no point'
+        shown = "a ZeroDivisionError"
+    return f"and on the w = 0 row: (3, -1.5, 0) came back as {shown}, no finite point, as a direction should"
+
+
 def divide_by_w(h):
     """Homogeneous rows back to points: divide each row's x and y by its own w.
 
@@ -354,6 +365,7 @@ register_exercise(
         exception_hint=_exception_hint,
         describe_input=_describe_h,
         follow_up=_follow_up,
+        success_note=_success_note,
         teaching=divide_by_w,
         ndarray_only=True,  # as lift and read_and_turn: the prompt asks for a numpy array
         wrong_variants=(
