@@ -18,13 +18,13 @@ import pytest
 from camlab.camera import Camera, project_points
 from camlab.projective import from_homogeneous, join, map_points, meet
 from camlab.widgets.start_here import (
-    WAY_RADIUS,
     WAY_SWEEP_DEG,
     arrowhead_size,
     tip_readout,
     turn_and_scale,
     turn_path,
     turn_way,
+    way_radius,
 )
 
 GEOMETRY = Path(__file__).resolve().parent.parent / "camlab" / "widgets" / "browser" / "geometry.js"
@@ -184,7 +184,7 @@ def test_the_stack_check_arithmetic_equals_the_demo():
     ]
     calls += [("arrowheadSize", [a]) for a in angles]
     calls += [
-        ("turnWay", [a, WAY_RADIUS * s, WAY_SWEEP_DEG, 25])
+        ("turnWay", [a, way_radius(s), WAY_SWEEP_DEG, 25])
         for a, s in zip(angles, scales, strict=True)
     ]
     out = run_js(calls)

@@ -445,7 +445,7 @@ def test_check_takes_a_shorter_time_limit_as_lesson_00_shows_it():
     start = time.monotonic()
     with pytest.raises(
         AssertionError,
-        match=r"still running after 0.4 s on test input 1 of 4, so the check stopped it",
+        match=r"still running after 0.4 s on test input 1 of 5, so the check stopped it",
     ):
         exercises.check_lift(_never_returns, time_limit_s=0.4)
     assert time.monotonic() - start < 3 and TIME_LIMIT_S == 30
@@ -1620,7 +1620,9 @@ def test_read_and_turn_names_a_wrong_turn_centre_only_when_it_is_the_one_fit():
     with pytest.raises(AssertionError) as info:
         check("read_and_turn", _read_and_turn_about(lambda img, c: c[::-1]))
     message = str(info.value)
-    assert "you turned about [1.5, 2.5], not about the centre c = [2.5, 1.5]" in message, message
+    assert (
+        "you moved the points about [1.5, 2.5], not about the centre c = [2.5, 1.5]" in message
+    ), message
     assert "width and height swapped" in message, message
     assert "counted from 1" not in message, message
 

@@ -643,7 +643,7 @@ def test_stack_check_shows_the_way_of_the_turn_at_every_angle(angle):
         (way,) = [ln for ln in ax.lines if ln.get_label().startswith("direction of rotation")]
         (head,) = [ln for ln in ax.lines if ln.get_label() == "_the way's arrowhead"]
         arc = np.column_stack(way.get_data())
-        assert len(arc) >= 3 and np.allclose(np.hypot(*arc.T), WAY_RADIUS)
+        assert len(arc) >= 3 and np.allclose(np.hypot(*arc.T), WAY_RADIUS)  # at s = 1: inside
         assert np.allclose(np.column_stack(head.get_data())[0], arc[-1])
     for key, way in demo.state["way"].items():
         assert demo.state["turns"][key].startswith(
@@ -665,16 +665,17 @@ def _distance_to_outline(points: np.ndarray, outline: np.ndarray) -> float:
     return float(np.hypot(*(points[:, None] - (a + t[..., None] * ab)).T).min())
 
 
-def test_stack_check_arrow_about_the_origin_never_touches_the_moved_house():
-    """At every angle and scale of the sweep the arrow's arc lies inside the house, clear of its outline.
+def test_stack_check_arrow_about_the_origin_never_touches_the_houses():
+    """At every angle and scale of the sweep the arrow's arc is clear of the moved house's outline.
 
-    Its radius goes with the scale (WAY_RADIUS s, the house's inradius is s), so at s = 0.3 and 0.5 it
-    no longer runs along the shrunk house's edge (a finding of the reviews).
+    Inside the house (radius WAY_RADIUS s, half its inradius s) from WAY_INSIDE_MIN_SCALE on; below it,
+    outside both houses and the roof tip's path (at s = 0.3 and 0.5 the arc inside ran along the shrunk
+    house's edge or was 10 px long: findings of the reviews).
     """
-    from camlab.widgets.start_here import WAY_RADIUS
+    from camlab.widgets.start_here import HOUSE, WAY_INSIDE_MIN_SCALE, WAY_RADIUS
 
     demo = DEMOS["stack_check"].builder()
-    for scale in (0.3, 0.5, 0.75, 1.0, 1.5, 2.0):
+    for scale in (0.3, 0.5, 0.75, 0.8, 1.0, 1.5, 2.0):
         for angle in (
             -180.0,
             -135.0,
@@ -694,22 +695,76 @@ def test_stack_check_arrow_about_the_origin_never_touches_the_moved_house():
                 ln for ln in demo.figure.axes[0].lines if ln.get_label().startswith("direction of")
             ]
             arc = np.column_stack(way.get_data())
-            assert np.allclose(np.hypot(*arc.T), WAY_RADIUS * scale)
             gap = _distance_to_outline(arc, demo.state["house"])
-            assert gap >= 0.45 * scale, (angle, scale, gap)  # half the inradius s, less a little
+            if scale >= WAY_INSIDE_MIN_SCALE:
+                assert np.allclose(np.hypot(*arc.T), WAY_RADIUS * scale)
+                assert gap >= 0.45 * scale, (
+                    angle,
+                    scale,
+                    gap,
+                )  # half the inradius s, less a little
+            else:  # outside both houses and the path (arc at 1.4, the scaling step inward from it)
+                assert gap >= 0.3 and _distance_to_outline(arc, HOUSE) >= 0.3, (angle, scale, gap)
+                assert np.hypot(*arc.T).min() - np.hypot(*demo.state["path"].T).max() >= 0.3
+
+
+@pytest.mark.parametrize("scale", [0.3, 0.5, 0.75, 0.8, 1.0, 2.0])
+def test_stack_check_arrow_about_the_origin_is_readable_at_every_scale(scale):
+    """The arrow about the origin is at least 22 px long on screen, its head at full size, at every scale."""
+    demo = DEMOS["stack_check"].builder()
+    demo.set(angle=-10.0, scale=scale)
+    demo.figure.canvas.draw()
+    for ax in demo.figure.axes[:2]:
+        (way,) = [ln for ln in ax.lines if ln.get_label().startswith("direction of")]
+        (head,) = [ln for ln in ax.lines if ln.get_label() == "_the way's arrowhead"]
+        screen = ax.transData.transform(np.column_stack(way.get_data()))
+        length = float(np.hypot(*np.diff(screen, axis=0).T).sum())
+        assert length >= 22.0, (scale, length)
+        assert head.get_markersize() >= 10 and len(head.get_xdata()) == 1
+
+
+def _readout_extents(demo):
+    """The window extents of the stack_check readout's texts and of the figure, as drawn."""
+    fig = demo.figure
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    texts = [t for t in fig.axes[0].texts if t.get_gid() == "readout"]
+    return [t.get_window_extent(renderer) for t in texts], fig.bbox
+
+
+def test_stack_check_readout_fits_the_figure_at_every_sweep_point():
+    """The readout (label, numbers and the longest note) lies inside the figure at every sweep point.
+
+    The browser's twin draws the same string from the same x in the same font, so this also bounds the live
+    canvas (a finding of the reviews: the short-turn note was cut to "... see the ar").
+    """
+    from camlab.widgets.start_here import stack_check
+
+    demo = stack_check()
+    sweep = DEMOS["stack_check"].sweep
+    settings = [dict(angle=a) for a in sweep["angle"]] + [dict(scale=s) for s in sweep["scale"]]
+    settings += [dict(angle=a, scale=s) for a in (-19.0, 19.0, -10.0) for s in (0.3, 2.0)]
+    for setting in settings:
+        demo.set(angle=40.0, scale=1.0)
+        demo.set(**setting)
+        extents, fig = _readout_extents(demo)
+        assert len(extents) == 2
+        for box in extents:
+            assert fig.x0 + 2 <= box.x0 and box.x1 <= fig.x1 - 2, (setting, box, fig)
+            assert box.y1 <= fig.y1, (setting, box, fig)
 
 
 @pytest.mark.parametrize(
     "angle, scale, note",
     [
         (0.0, 1.0, "(unmoved: no path)"),
-        (5.0, 1.0, "(rotation under 20°: see the arrow about (0, 0))"),
-        (-5.0, 1.0, "rotation under 20°"),
-        (15.0, 1.0, "rotation under 20°"),
-        (-19.0, 1.0, "rotation under 20°"),
+        (5.0, 1.0, "(θ under 20°: see the arrow about (0, 0))"),
+        (-5.0, 1.0, "θ under 20°"),
+        (15.0, 1.0, "θ under 20°"),
+        (-19.0, 1.0, "θ under 20°"),
         (20.0, 1.0, ""),
         (30.0, 1.0, ""),
-        (5.0, 1.5, "rotation under 20°"),
+        (5.0, 1.5, "θ under 20°"),
         (0.0, 2.0, ""),
     ],
 )

@@ -490,7 +490,15 @@ def _mark_multiples(ax: Axes, marks: np.ndarray) -> None:
     """
     for wx, wy, w in marks:
         below = w < 1
-        ax.plot([wx, wx], [wy, wy], [0, w], color="0.35", lw=0.8, ls=":", zorder=0 if below else 3)
+        ax.plot(
+            [wx, wx],
+            [wy, wy],
+            [0, w],
+            color="0.2",
+            lw=1.0,
+            ls=(0, (2, 2)),
+            zorder=0 if below else 3,
+        )
         if w != 1.0:
             ax.plot(
                 [wx],
@@ -502,13 +510,15 @@ def _mark_multiples(ax: Axes, marks: np.ndarray) -> None:
                 alpha=0.6 if below else 1.0,
                 zorder=0 if below else 6,
             )
+        left = (
+            w != 1
+        )  # above w = 1 on the left, clear of the w axis's ticks; below it too, off the w = 0 edge
         ax.text(
-            wx + (-0.12 if w > 1 else 0.12),  # above w = 1 on the left: clear of the w axis's ticks
+            wx + (-0.12 if left else 0.12),
             wy,
-            w
-            - 0.22 * below,  # a label below the plane sits a little lower, clear of its front edge
-            f"w = {w:g}  " if w > 1 else f"  w = {w:g}" + (", below the plane" if below else ""),
-            ha="right" if w > 1 else "left",
+            w + 0.15 * below,  # a little up: clear of the w = 0 plane's back edge behind it
+            f"w = {w:g}  " if left else f"  w = {w:g}",
+            ha="right" if left else "left",
             fontsize=9,
             zorder=0 if below else 8,
             alpha=0.75 if below else 1.0,
@@ -611,7 +621,7 @@ def draw_homogeneous_rays(
         "A 3-D sketch with axes x, y and w. A grey square is the plane w = 1, the image; a dashed square below "
         "it is the plane w = 0 through the origin. An orange ray from the origin, dashed below the plane and "
         f"solid above, pierces the plane w = 1 at the orange dot ({x:g}, {y:g}, 1), labelled w = 1; black dots "
-        f"on the same ray mark {marks} (those below the plane faded, seen through it); a dotted line drops from each dot to the plane w = 0. A dark grey "
+        f"on the same ray mark {marks} (those below the plane faded, seen through it); a dashed line drops from each dot to the plane w = 0. A dark grey "
         f"arrow from the origin lies in the plane w = 0: the direction ({dx:g}, {dy:g}, 0), whose ray never "
         "meets the plane w = 1.",
     )

@@ -28,10 +28,18 @@ ARC_SAMPLES = 61  # points on the arc of the roof tip's turn
 # the arrowhead (a dart there read as the tip moving on), so none is drawn and the readout points to the arrow
 # about the origin (turn_way), drawn at every angle; the browser's twin (stack_check.js) gets both in the scene.
 SHORT_TURN_DEG = 20.0
-SHORT_TURN_NOTE = f"  (rotation under {SHORT_TURN_DEG:g}°: see the arrow about (0, 0))"
+SHORT_TURN_NOTE = f"  (θ under {SHORT_TURN_DEG:g}°: see the arrow about (0, 0))"
+# Where the readout starts (figure fraction): its label ends there, the numbers and a note follow, so the longest
+# line, a short turn's, fits inside the figure (tests/test_widgets.py measures it at every sweep point).
+READOUT_X = 0.36
 # The way of the turn at every angle, short ones too: an arrow on a fixed arc about the origin, the centre of
 # the turn, on the side away from the roof tip's start (below it on y-down axes), clear of the dot on a short turn.
 WAY_RADIUS = 0.5  # plot units at scale 1, times the scale: half the house's inradius, so never on its outline
+# Under WAY_INSIDE_MIN_SCALE the house is too small to hold a readable arrow (at s = 0.3 it was 10 px long): the
+# arrow goes outside the original house instead, on a circle of WAY_OUTSIDE_RADIUS, which nothing else crosses
+# when s < 1 (both houses reach radius 1.42 at most, the roof tip's path 1.4).
+WAY_INSIDE_MIN_SCALE = 0.8
+WAY_OUTSIDE_RADIUS = 1.8
 WAY_SWEEP_DEG = 80.0
 MOVED = (
     "0.15"  # the moved house: near-black, so colour stays for the points the lesson reads (orange)
@@ -76,11 +84,32 @@ def turn_path(angle_deg: float, scale: float, start: np.ndarray, samples: int = 
     return np.vstack([arc, scale * arc[-1]])
 
 
+def way_radius(scale: float) -> float:
+    """The radius of the arrow about the origin for the house's scale ``scale``, plot units.
+
+    :data:`WAY_RADIUS` times ``scale`` (half the moved house's inradius, ``scale``) while that is at least
+    0.4 plot units (``scale`` >= :data:`WAY_INSIDE_MIN_SCALE`); below it, :data:`WAY_OUTSIDE_RADIUS`,
+    outside both houses and the roof tip's path, so the arrow never shrinks below a readable size. The
+    browser's twin is in ``widgets/browser/stack_check.js``.
+
+    Parameters
+    ----------
+    scale : float
+        The house's scale s.
+
+    Returns
+    -------
+    float
+        The radius, plot units.
+    """
+    return WAY_RADIUS * scale if scale >= WAY_INSIDE_MIN_SCALE else WAY_OUTSIDE_RADIUS
+
+
 def turn_way(angle_deg: float, samples: int = 25, scale: float = 1.0) -> np.ndarray:
     r"""The arc of the arrow that shows which way the house turns, at any angle: fixed sweep, about the origin.
 
-    An arc of :data:`WAY_SWEEP_DEG` on the circle of radius :data:`WAY_RADIUS` times ``scale`` about the
-    origin (the moved house's inradius is ``scale``, so the arc stays inside it at every angle), centred on
+    An arc of :data:`WAY_SWEEP_DEG` on the circle of radius :func:`way_radius` about the origin (inside
+    the moved house, or outside both houses when the house is too small to hold it), centred on
     the direction opposite the roof tip's start, (0, 1), and running the way :math:`R(\theta)` turns for the
     sign of ``angle_deg``; its arrowhead goes at the last point. Its length does not grow with the angle, so
     a turn of 5° shows its way as clearly as one of 90°.
@@ -92,7 +121,7 @@ def turn_way(angle_deg: float, samples: int = 25, scale: float = 1.0) -> np.ndar
     samples : int
         Points along the arc, both ends included.
     scale : float
-        The house's scale s; the arc's radius is :data:`WAY_RADIUS` times it.
+        The house's scale s; the arc's radius is :func:`way_radius` of it.
 
     Returns
     -------
@@ -102,7 +131,7 @@ def turn_way(angle_deg: float, samples: int = 25, scale: float = 1.0) -> np.ndar
     if angle_deg == 0:
         return np.zeros((0, 2))
     phi = np.radians(90.0 + np.sign(angle_deg) * WAY_SWEEP_DEG * np.linspace(-0.5, 0.5, samples))
-    return WAY_RADIUS * scale * np.column_stack([np.cos(phi), np.sin(phi)])
+    return way_radius(scale) * np.column_stack([np.cos(phi), np.sin(phi)])
 
 
 def turn_and_scale(angle_deg: float, scale: float) -> np.ndarray:
@@ -360,6 +389,8 @@ def _browser_scene(panels: list[dict], readout, dpi: float) -> dict:
         shortTurnDeg=SHORT_TURN_DEG,
         shortTurnNote=SHORT_TURN_NOTE,
         wayRadius=WAY_RADIUS,
+        wayInsideMinScale=WAY_INSIDE_MIN_SCALE,
+        wayOutsideRadius=WAY_OUTSIDE_RADIUS,
         waySweepDeg=WAY_SWEEP_DEG,
         arrowhead=ARROWHEAD.vertices[:-1].tolist(),
         panels=[dict(toPixels=to_canvas_pixels(p["ax"]), yDown=p["y_down"]) for p in panels],
@@ -430,8 +461,8 @@ def stack_check() -> Demo:
     where = dict(
         transform=view.fig.transFigure, va="top", fontsize=11, in_layout=False, gid="readout"
     )
-    ax_down.text(0.5, 0.98, "roof tip (orange dot) at ", ha="right", **where)
-    readout = view.animate(ax_down.text(0.5, 0.98, "", ha="left", **where))
+    ax_down.text(READOUT_X, 0.98, "roof tip (orange dot) at ", ha="right", **where)
+    readout = view.animate(ax_down.text(READOUT_X, 0.98, "", ha="left", **where))
     view.fig.legend(
         *ax_down.get_legend_handles_labels(), loc="outside lower center", ncols=3, fontsize=9
     )
@@ -448,9 +479,7 @@ def stack_check() -> Demo:
         # dot read as the tip moving on); the readout says so, and cell 7 of the lesson names the turn.
         if abs(angle) < SHORT_TURN_DEG:
             way = np.zeros(2)
-        arc = turn_way(
-            angle, scale=s
-        )  # the way of the turn, at every angle but 0, inside the house
+        arc = turn_way(angle, scale=s)  # the way of the turn, at every angle but 0: see way_radius
         for panel in panels:
             panel["way"].set_data(arc[:, 0], arc[:, 1])
             ends = arc[-2:] if len(arc) else np.zeros((2, 2))

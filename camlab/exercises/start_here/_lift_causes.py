@@ -79,6 +79,13 @@ def _rounding(s: _XY) -> str:
     return "you cast to int or rounded to whole pixels (int, np.round, np.floor(p + 0.5))"
 
 
+def _decimals(s: _XY) -> int | None:
+    """The k in 1..6 with x and y = np.round(p, k) != p, if there is one."""
+    if np.allclose(s.xy, s.p):
+        return None
+    return next((k for k in range(1, 7) if np.allclose(s.xy, np.round(s.p, k))), None)
+
+
 def _float16_hint(s: _XY) -> str:
     short = np.float16
     return (
@@ -135,6 +142,15 @@ XY_MISTAKES = (
         lambda s: (
             f"the coordinates lost their fractions: {_rounding(s)}, but image points are real numbers (sub-pixel positions, such as this input's "
             f"({s.p[0]:g}, {s.p[1]:g})); keep floats"
+        ),
+    ),
+    Mistake(
+        "rounded to decimals",
+        lambda s: _decimals(s) is not None,
+        lambda s: (
+            f"you rounded the result to {_decimals(s)} decimal{'s' * (_decimals(s) > 1)} (np.round(..., {_decimals(s)})): "
+            f"({float(s.p[0])!r}, {float(s.p[1])!r}) came back as ({s.xy[0]:g}, {s.xy[1]:g}); lifting keeps x and y "
+            "as they are: round only when you print"
         ),
     ),
     Mistake(
@@ -286,14 +302,16 @@ def cases() -> list[tuple[np.ndarray]]:
     """The check's test inputs.
 
     The first has fractions, so an int cast shows at once; the second lies outside the image (left
-    of it, on the top row); the third is the bottom-right pixel of 640 x 480; the last has decimals
-    no binary float holds exactly, so a detour through float16 (3 digits) shows.
+    of it, on the top row); the third is the bottom-right pixel of 640 x 480; the fourth has decimals
+    no binary float holds exactly, so a detour through float16 (3 digits) shows; the last, (π / 10, e),
+    has endless decimals, so an answer rounded to a few decimals shows.
     """
     return [
         (np.array([2.5, 4.25]),),
         (np.array([-1.5, 0.0]),),
         (np.array([639.0, 479.0]),),
         (np.array([100.1, 0.7]),),
+        (np.array([np.pi / 10, np.e]),),
     ]
 
 

@@ -132,8 +132,13 @@ def notebook_centre(c: np.ndarray, W: int, H: int) -> str:
     return ""
 
 
-def centre_cause(c: np.ndarray, W: int, H: int) -> str:
-    """Why ``c`` is not the centre of a ``W`` x ``H`` image: a notebook variable, else the first of :data:`CENTRE_MISTAKES`."""
+def centre_cause(c: np.ndarray, W: int, H: int, X: np.ndarray | None = None) -> str:
+    """Why ``c`` is not the centre of a ``W`` x ``H`` image: a notebook variable, the mean of the points ``X``, else the first of :data:`CENTRE_MISTAKES`."""
+    if X is not None and np.allclose(c, np.mean(X, axis=0)):
+        return (
+            f"{numbers(c)} is the mean of the points X (X.mean(axis=0)), not the image's centre: the centre comes "
+            f"from img.shape, ((W - 1)/2, (H - 1)/2) = ({(W - 1) / 2:g}, {(H - 1) / 2:g}), whatever the points"
+        )
     hint = notebook_centre(c, W, H) or first_mistake(
         CENTRE_MISTAKES, SimpleNamespace(W=W, H=H), c, _same_centre
     )
@@ -208,7 +213,7 @@ def _shift_mistake(dv: int, du: int) -> Mistake:
 
 
 def _read_turned(s, to_int) -> bool:
-    """Whether the values were read at the turned points (rounded by ``to_int``) instead of at X."""
+    """Whether the values were read at the moved points (rounded by ``to_int``) instead of at X."""
     if s.turned is None:
         return False
     uu, vv = to_int(s.turned).T
@@ -350,15 +355,47 @@ VALUE_MISTAKES = (
         for d in (0.5, -0.5)
     ),
     Mistake(
-        "read at the turned points",
+        "an interpolated read outside the image",
+        lambda s: _outside_read(s) is not None,
+        lambda s: _outside_read_hint(s),
+    ),
+    Mistake(
+        "read at the moved points",
         lambda s: (
             _read_turned(s, lambda t: np.rint(t).astype(int))
             or _read_turned(s, lambda t: t.astype(int))
         ),
-        "you read the values at the turned points: read them at the points X themselves, before the turn, "
+        "you read the values at the moved points: read them at the points X themselves, before the move, "
         "img[v, u] with u, v = X[:, 0], X[:, 1]",
     ),
 )
+
+
+def _outside_read(s) -> int | None:
+    """The first point a hair outside the image that read 0, when every wrong value is such a point (else None).
+
+    An interpolating read (scipy's ``map_coordinates``, ``cv2.remap``) returns its fill value, 0, at a
+    computed 5.000000000000001 past the last row H - 1 = 5, though the pixel is there after rounding.
+    """
+    if s.values.shape != (s.n,):
+        return None
+    wrong = ~np.isclose(s.values, s.img[s.v, s.u])
+    hair = np.any((s.X < 0) | (s.X > [s.W - 1, s.H - 1]), axis=1) & np.all(
+        np.abs(s.X - np.rint(s.X)) < 1e-6, axis=1
+    )
+    if wrong.any() and np.all(hair[wrong]) and np.allclose(s.values[wrong], 0):
+        return int(np.argmax(wrong))
+    return None
+
+
+def _outside_read_hint(s) -> str:
+    k = _outside_read(s)
+    return (
+        f"X[{k}] = ({numbers(s.X[k, 0])}, {numbers(s.X[k, 1])}) lies a hair outside the image (its pixel centres run "
+        f"0 .. {s.W - 1} by 0 .. {s.H - 1}), and you read 0 there: an interpolating read (scipy's map_coordinates, "
+        "cv2.remap) gives its fill value outside. The points sit on pixel centres: round, then index, "
+        "img[v, u] with u, v = np.rint(X).astype(int).T"
+    )
 
 
 def _first_wrong_value(s) -> str:
@@ -390,7 +427,16 @@ def values_cause(
     return first_mistake(VALUE_MISTAKES, s) or _first_wrong_value(s)
 
 
-# -- the turned points --------------------------------------------------------------------------------
+# -- the moved points --------------------------------------------------------------------------------
+
+
+def _decimals(s) -> int | None:
+    """The k in 1..6 with the answer = the right points rounded to k decimals, if there is one."""
+    return next((k for k in range(1, 7) if np.allclose(s.got, np.round(s.turned, k))), None)
+
+
+def _mean_of_points(s) -> np.ndarray:
+    return s.X.mean(axis=0)
 
 
 def _inverse_turn(s):
@@ -453,7 +499,7 @@ def _about_half_off(s):
     return None
 
 
-# Checked in order (answer against answer, np.allclose) on the turned points, for the points ``s.X``,
+# Checked in order (answer against answer, np.allclose) on the moved points, for the points ``s.X``,
 # the matrix ``s.A``, the right centre ``s.c`` and the image size ``s.W`` x ``s.H``.
 TURN_MISTAKES = (
     Mistake(
@@ -465,24 +511,33 @@ TURN_MISTAKES = (
     Mistake(
         "only X - c",
         lambda s: s.X - s.c,
-        "you moved the centre to the origin, X - c, and stopped: then turn by A and move back, (X - c) @ A.T + c",
+        "you moved the centre to the origin, X - c, and stopped: then apply A and move back, (X - c) @ A.T + c",
     ),
     Mistake(
         "u and v swapped",
         lambda s: s.turned[:, ::-1],
-        "each of your turned points is (v, u), its two numbers swapped: points are rows (u, v), like X, so keep "
+        "each of your moved points is (v, u), its two numbers swapped: points are rows (u, v), like X, so keep "
         "the columns in that order: (X - c) @ A.T + c",
     ),
     Mistake(
         "rounded",
         lambda s: np.rint(s.turned),
-        "right, then rounded to whole pixels (np.round or np.rint): the turned points are points, not pixel "
+        "right, then rounded to whole pixels (np.round or np.rint): the moved points are points, not pixel "
         "indices, so keep their fractions; round only to index an image",
+    ),
+    Mistake(
+        "rounded to decimals",
+        lambda s: None if _decimals(s) is None else np.round(s.turned, _decimals(s)),
+        lambda s: (
+            f"right, then rounded to {_decimals(s)} decimal{'s' * (_decimals(s) > 1)} "
+            f"(np.round(..., {_decimals(s)})): the moved points have endless decimals (cos 30° = 0.8660...); "
+            "return the full floats and round only to print"
+        ),
     ),
     Mistake(
         "cast to int",
         lambda s: np.trunc(s.turned),
-        "right, then cast to int (.astype(int) or int()), which drops the fractions: the turned points are points, "
+        "right, then cast to int (.astype(int) or int()), which drops the fractions: the moved points are points, "
         "not pixel indices, so keep them as floats; round only to index an image",
     ),
     Mistake(
@@ -505,38 +560,38 @@ TURN_MISTAKES = (
     Mistake(
         "about the origin",
         lambda s: s.X @ s.A.T,
-        "you turned about the origin (0, 0), the top-left pixel's centre: turn about the image's centre, c + A (x - c): (X - c) @ A.T + c",
+        "you moved the points about the origin (0, 0), the top-left pixel's centre: move them about the image's centre, c + A (x - c): (X - c) @ A.T + c",
     ),
     Mistake(
         "about the origin, X @ A",
         lambda s: s.X @ s.A,
-        "you turned about the origin, and X @ A applies A's transpose: subtract the centre, turn with X @ A.T, add it back: (X - c) @ A.T + c",
+        "you moved the points about the origin, and X @ A applies A's transpose: subtract the centre, apply A with X @ A.T, add it back: (X - c) @ A.T + c",
     ),
     Mistake(
         "the centre not added back",
         lambda s: (s.X - s.c) @ s.A.T,
-        "you forgot to add the centre back after the turn: c + A (x - c), so (X - c) @ A.T + c",
+        "you forgot to add the centre back after applying A: c + A (x - c), so (X - c) @ A.T + c",
     ),
     Mistake(
         "the centre not subtracted",
         lambda s: s.X @ s.A.T + s.c,
-        "you added the centre after the turn but never subtracted it before: move c to the origin first, "
+        "you added the centre after applying A but never subtracted it before: move c to the origin first, "
         "c + A (x - c), so (X - c) @ A.T + c",
     ),
     Mistake(
         "the centre subtracted twice",
         lambda s: (s.X - s.c) @ s.A.T - s.c,
-        "add the centre back after the turn (you subtracted it twice): (X - c) @ A.T + c",
+        "add the centre back after applying A (you subtracted it twice): (X - c) @ A.T + c",
     ),
     Mistake(
         "a sign flip",
         lambda s: s.c - (s.X - s.c) @ s.A.T,
-        "a sign flip: c - A (x - c) turns and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c",
+        "a sign flip: c - A (x - c) maps and mirrors through the centre; the move is c + A (x - c), (X - c) @ A.T + c",
     ),
     Mistake(
         "the signs swapped",
         lambda s: (s.X + s.c) @ s.A.T - s.c,
-        "the signs are swapped: move the centre to the origin first, X - c, then turn, then add c back: (X - c) @ A.T + c",
+        "the signs are swapped: move the centre to the origin first, X - c, then apply A, then add c back: (X - c) @ A.T + c",
     ),
     Mistake(
         "y flipped",
@@ -563,16 +618,24 @@ TURN_MISTAKES = (
         ),
         (
             "you applied inv(A) where A itself is to be applied, (X - c) @ inv(A): for a rotation inv(A) = A.T, so it "
-            "passes on a turn, but for any other A (this one) it is another move: x' = c + A (x - c), (X - c) @ A.T + c"
+            "passes on a rotation, but for any other A (this one) it is another move: x' = c + A (x - c), (X - c) @ A.T + c"
         ),
     ),
     Mistake(
         "about c, half a pixel off",
         _about_half_off,
         lambda s: (
-            f"you turned about {numbers(s.c + s.half)}, {_half_off(s.half)} the centre c = {numbers(s.c)} you "
-            "returned (it is right): a 0.5 crept into the turn, as (X + 0.5 - c) @ A.T + c - 0.5 or Pillow's centre "
+            f"you moved the points about {numbers(s.c + s.half)}, {_half_off(s.half)} the centre c = {numbers(s.c)} you "
+            "returned (it is right): a 0.5 crept into the move, as (X + 0.5 - c) @ A.T + c - 0.5 or Pillow's centre "
             "(W / 2, H / 2) give. Pixel centres are whole numbers here (section 3.4): (X - c) @ A.T + c"
+        ),
+    ),
+    Mistake(
+        "about the mean of the points",
+        lambda s: (s.X - _mean_of_points(s)) @ s.A.T + _mean_of_points(s),
+        lambda s: (
+            f"you moved the points about their mean, {numbers(_mean_of_points(s))} (X.mean(axis=0)), not about the "
+            "image's centre c: it comes from img.shape, ((W - 1)/2, (H - 1)/2), whatever the points"
         ),
     ),
     *(
@@ -581,11 +644,11 @@ TURN_MISTAKES = (
             _about(centre, transposed),
             lambda s, centre=centre, transposed=transposed: (
                 (
-                    f"you turned about {numbers(centre.answer(s))}, not the image's centre: fix c first "
-                    "(above), then check the turn"
+                    f"you moved the points about {numbers(centre.answer(s))}, not the image's centre: fix c first "
+                    "(above), then check the move"
                     if s.centre_named
-                    else f"you turned about {numbers(centre.answer(s))}, not about the centre c = {numbers(s.c)} "
-                    f"you returned (it is right); in the turn, {centre.hint}"
+                    else f"you moved the points about {numbers(centre.answer(s))}, not about the centre c = {numbers(s.c)} "
+                    f"you returned (it is right); in the move, {centre.hint}"
                 )
                 + ("; and X @ A applies A's transpose: X @ A.T" if transposed else "")
             ),
@@ -614,7 +677,7 @@ def turned_cause(
     if t.shape == (2, n) and n != 2:
         return "one row per point: A @ X.T gives the points as columns; transpose back, (A @ X.T).T, or write X @ A.T"
     if t.shape != (n, 2):
-        return f"the turned points are rows, shape ({n}, 2), like X; got {t.shape}"
+        return f"the moved points are rows, shape ({n}, 2), like X; got {t.shape}"
     s = SimpleNamespace(
         X=X, A=A, c=c, W=W, H=H, turned=(X - c) @ A.T + c, centre_named=centre_named, got=t
     )
@@ -625,15 +688,15 @@ def turned_cause(
         rest = first_mistake(TURN_MISTAKES, s, t, np.allclose)
         if not rest and np.allclose(np.abs(shift[0]), 0.5):
             return (
-                f"every point is off by {numbers(shift[0])}, half a pixel: the turn is right, but done in Pillow's "
+                f"every point is off by {numbers(shift[0])}, half a pixel: the move by A is right, but done in Pillow's "
                 "or COLMAP's coordinates, (u + 0.5, v + 0.5), where whole numbers are pixel corners (section 3.4), "
                 "and not converted back (or a 0.5 was added): here pixel centres are whole numbers, (X - c) @ A.T + c"
             )
         return rest or (
-            f"every point is off by the same shift, {numbers(shift[0].round(4))}: the turn is right, but the centre "
+            f"every point is off by the same shift, {numbers(shift[0].round(4))}: the move by A is right, but the centre "
             "subtracted and the one added back differ (or a constant was added): (X - c) @ A.T + c, the same c twice"
         )
     return (
         first_mistake(TURN_MISTAKES, s, t, np.allclose)
-        or "turn each row about the centre: x' = c + A (x - c), for rows (X - c) @ A.T + c"
+        or "move each row about the centre by A: x' = c + A (x - c), for rows (X - c) @ A.T + c"
     )

@@ -22,7 +22,7 @@ from ._turn_raised import exception_hint
 # Input 1 is wider than tall (6 x 4) with even sides, so W / 2 = W // 2 differs from (W - 1) / 2, W and H
 # cannot be confused, and img[u, v] raises for u >= 4; its A is a shear with a scale, not a turn (A.T is
 # neither A nor its inverse, so X @ A, A's inverse and a sign flip each show as themselves, and A - I is
-# invertible, so a wrong centre can be read back from the turned points); input 2 is square and odd (5 x 5), where
+# invertible, so a wrong centre can be read back from the moved points); input 2 is square and odd (5 x 5), where
 # img[u, v] raises nothing and silently reads the transposed pixel (the lesson's warning), with a quarter
 # turn; input 3 is 7 x 3 with a turn and a scale; input 4 is taller
 # than wide (4 x 6), where img[u, v] raises for v >= 4, and its X is computed, as points in a program are:
@@ -129,7 +129,7 @@ def _not_arrays(got, parts, names) -> str:
 def _rt_diagnose(args, got, expected) -> str:
     img, X, A = args
     H, W = img.shape
-    order = "return three things, in this order: the centre c, shape (2,); the values, shape (N,); the turned points, shape (N, 2): `return c, values, turned`"
+    order = "return three things, in this order: the centre c, shape (2,); the values, shape (N,); the moved points, shape (N, 2): `return c, values, moved`"
     if not isinstance(got, (tuple, list)):
         a = _as_floats(got)
         if a is not None and a.shape == (2,) and np.allclose(a, expected[0]):
@@ -137,7 +137,7 @@ def _rt_diagnose(args, got, expected) -> str:
         return f"you returned {type(got).__name__ if not isinstance(got, np.ndarray) else 'one array'}; {order}"
     if len(got) != 3:
         return f"you returned {len(got)} things; {order}"
-    names = ("the centre c", "the values", "the turned points")
+    names = ("the centre c", "the values", "the moved points")
     parts = [_as_floats(g) for g in got]
     for name, part, g in zip(names, parts, got, strict=True):
         if part is None:
@@ -152,8 +152,8 @@ def _rt_diagnose(args, got, expected) -> str:
         if order != (0, 1, 2) and all(
             same(parts[k], e) for k, e in zip(order, expected, strict=True)
         ):
-            yours = ", ".join(("c", "values", "turned")[order.index(k)] for k in range(3))
-            return f"the three parts are right but came back in the wrong order, ({yours}): `return c, values, turned`"
+            yours = ", ".join(("c", "values", "moved")[order.index(k)] for k in range(3))
+            return f"the three parts are right but came back in the wrong order, ({yours}): `return c, values, moved`"
     causes = []
     if not same(c, expected[0]):
         if c.shape != (2,):
@@ -162,7 +162,7 @@ def _rt_diagnose(args, got, expected) -> str:
                 "np.array([(W - 1) / 2, (H - 1) / 2]) (or flatten yours, c.ravel())"
             )
         else:
-            causes.append(f"the centre: {centre_cause(c, W, H)}")
+            causes.append(f"the centre: {centre_cause(c, W, H, X)}")
     if not same(values, expected[1]):
         causes.append(f"the values: {values_cause(values, img, X, expected[2])}")
     if not same(turned, expected[2]):
@@ -172,12 +172,12 @@ def _rt_diagnose(args, got, expected) -> str:
         if yours is not None and wrong_c and turned.shape == yours.shape:
             if np.allclose(turned, yours):
                 cause = "right for your centre c: fix c, and they follow"
-        causes.append(f"the turned points: {cause}")
+        causes.append(f"the moved points: {cause}")
     return ("\n" + " " * 16).join(causes) if causes else "compare each part with the expected one"
 
 
 def read_and_turn(img, X, A):
-    """Section 3's conventions: the image's centre, the pixels under the points X, and X turned about the centre.
+    """Section 3's conventions: the image's centre, the pixels under the points X, and X moved by A about the centre.
 
     Parameters
     ----------
@@ -187,7 +187,7 @@ def read_and_turn(img, X, A):
         Points (u, v) at pixel centres inside the image: whole numbers, up to floating-point
         rounding.
     A : (2, 2) ndarray
-        The turn (any 2 x 2 matrix).
+        Any linear map (a rotation, a scale, a shear), applied about the centre.
 
     Returns
     -------
@@ -195,7 +195,7 @@ def read_and_turn(img, X, A):
         The centre ((W - 1)/2, (H - 1)/2).
     values : (N,) ndarray
         img[v, u] at each point.
-    turned : (N, 2) ndarray
+    moved : (N, 2) ndarray
         c + A (x - c) for each point x.
     """
     H, W = img.shape[:2]  # numpy's shape: rows (H) first, then columns (W)
@@ -203,9 +203,9 @@ def read_and_turn(img, X, A):
     # round, then convert: .astype(int) alone truncates 2.9999999999999996 to 2
     u, v = np.rint(X).astype(int).T
     values = img[v, u]  # row v, column u
-    # x' = c + A (x - c): move c to the origin, turn, move back; every row at once
-    turned = (X - c) @ A.T + c
-    return c, values, turned
+    # x' = c + A (x - c): move c to the origin, apply A, move back; every row at once
+    moved = (X - c) @ A.T + c
+    return c, values, moved
 
 
 def _rt_wrong(centre=None, read=None, turn=None):
@@ -224,6 +224,14 @@ def _rt_wrong(centre=None, read=None, turn=None):
         return c, values, turned
 
     return wrong
+
+
+def _interpolated_read(img, X, A):
+    """A read that gives 0 a hair outside the pixel centres, as map_coordinates does (a wrong variant for the tests)."""
+    H, W = img.shape
+    c, values, turned = read_and_turn(img, X, A)
+    inside = np.all((X >= 0) & (X <= [W - 1, H - 1]), axis=1)
+    return c, np.where(inside, values, 0), turned
 
 
 def _float_index(img, X, A):
@@ -287,9 +295,18 @@ register_exercise(
                     *read_and_turn(img, X, A)[:2],
                     read_and_turn(img, X, A)[2].tolist(),
                 ),
-                "the turned points came back as a list: return a numpy array of shape (N, 2)",
+                "the moved points came back as a list: return a numpy array of shape (N, 2)",
             ),
             (_rt_wrong(centre=lambda W, H: (W / 2, H / 2)), "you used (W / 2, H / 2)"),
+            (
+                _rt_wrong(turn=lambda X, A, c: ((X - c) @ A.T + c).round(2)),
+                "right, then rounded to 2 decimals",
+            ),
+            (
+                _rt_wrong(turn=lambda X, A, c: (X - X.mean(0)) @ A.T + X.mean(0)),
+                "you moved the points about their mean",
+            ),
+            (_interpolated_read, "an interpolating read (scipy's map_coordinates, cv2.remap)"),
             (_rt_wrong(centre=lambda W, H: (W // 2, H // 2)), "W // 2"),
             (_rt_wrong(centre=lambda W, H: ((W + 1) / 2, (H + 1) / 2)), "counted from 1"),
             (
@@ -332,7 +349,7 @@ register_exercise(
                         turned,
                     )
                 )(*read_and_turn(img, X, A)),
-                "you read the values at the turned points",
+                "you read the values at the moved points",
             ),
             (
                 _rt_wrong(turn=lambda X, A, c: np.round((X - c) @ A.T + c)),
@@ -346,7 +363,7 @@ register_exercise(
             (_rt_wrong(turn=lambda X, A, c: X @ A.T + c), "never subtracted it before"),
             (
                 _rt_wrong(turn=lambda X, A, c: (X - c) @ A.T + c + 0.5),
-                "every point is off by [0.5, 0.5], half a pixel: the turn is right, but done in Pillow's",
+                "every point is off by [0.5, 0.5], half a pixel: the move by A is right, but done in Pillow's",
             ),
             (
                 _rt_wrong(turn=lambda X, A, c: (X - c) @ A.T + c + np.array([0.25, -1.0])),
@@ -354,18 +371,18 @@ register_exercise(
             ),
             (
                 _rt_wrong(turn=lambda X, A, c: (X + 0.5 - c) @ A.T + c - 0.5),
-                "you turned about [2, 1], half a pixel left of and above the centre c = [2.5, 1.5] you returned",
+                "you moved the points about [2, 1], half a pixel left of and above the centre c = [2.5, 1.5] you returned",
             ),
             (
                 _rt_wrong(
                     turn=lambda X, A, c: (X - np.floor(c)) @ A.T + np.floor(c) if c[0] % 1 else X
                 ),
-                "you turned about [2, 1], half a pixel left of and above",
+                "you moved the points about [2, 1], half a pixel left of and above",
             ),
             (
                 _rt_wrong(turn=lambda X, A, c: (X - 2 * c) @ A.T + 2 * c),
-                "you turned about [5, 3], not about the centre c = [2.5, 1.5] you returned (it is right); in the "
-                "turn, that is the last pixel",
+                "you moved the points about [5, 3], not about the centre c = [2.5, 1.5] you returned (it is right); in the "
+                "move, that is the last pixel",
             ),
             (_rt_wrong(read=lambda img, u, v: img[v, u] / 255), "every value divided by 255"),
             (
@@ -392,13 +409,13 @@ register_exercise(
                 lambda img, X, A: (lambda c, values, turned: (values, c, turned))(
                     *read_and_turn(img, X, A)
                 ),
-                "came back in the wrong order, (values, c, turned)",
+                "came back in the wrong order, (values, c, moved)",
             ),
             (
                 lambda img, X, A: (lambda c, values, turned: (c, turned, values))(
                     *read_and_turn(img, X, A)
                 ),
-                "came back in the wrong order, (c, turned, values)",
+                "came back in the wrong order, (c, moved, values)",
             ),
             (  # a y-up habit: A with y flipped
                 _rt_wrong(
@@ -435,7 +452,7 @@ register_exercise(
             ),
             (
                 _rt_wrong(turn=lambda X, A, c: ((X - c) @ A.T + c)[:, ::-1]),
-                "each of your turned points is (v, u)",
+                "each of your moved points is (v, u)",
             ),
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A + c), "X @ A applies A's transpose"),
             (
@@ -443,7 +460,7 @@ register_exercise(
                 "A @ X treats X as one column per point",
             ),
             (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c[:, None]), "(A @ X.T).T"),
-            (_rt_wrong(turn=lambda X, A, c: X @ A.T), "you turned about the origin"),
+            (_rt_wrong(turn=lambda X, A, c: X @ A.T), "you moved the points about the origin"),
             (_rt_wrong(turn=lambda X, A, c: A @ (X - c).T + c), "transpose back before adding c"),
             (_rt_wrong(turn=lambda X, A, c: c - (X - c) @ A.T), "a sign flip"),
             (
@@ -460,7 +477,7 @@ register_exercise(
             (_rt_wrong(turn=lambda X, A, c: (X - c) @ A.T), "forgot to add the centre back"),
             (
                 _rt_wrong(turn=lambda X, A, c: (X - (c + 0.5)) @ A.T + (c + 0.5)),
-                "you turned about [3, 2], half a pixel right of and below the centre c = [2.5, 1.5]",
+                "you moved the points about [3, 2], half a pixel right of and below the centre c = [2.5, 1.5]",
             ),
             (
                 _rt_wrong(

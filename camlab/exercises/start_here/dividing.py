@@ -35,7 +35,7 @@ def cases() -> list[tuple[np.ndarray]]:
     """
     return [
         (np.array([[5.0, 8.5, 2.0], [-0.6, 0.3, -0.3], [1279.0, 958.0, 4.0]]),),
-        (np.array([[2.0, 4.0, 2.0], [3.0, 5.0, 0.5]]),),
+        (np.array([[2.0, 4.0, 2.0], [3.0, 5.0, 0.7]]),),  # 3 / 0.7 = 4.2857...: a rounding shows
         (np.array([[7.5, -3.0, 2.5]]),),
     ]
 
@@ -132,6 +132,14 @@ DIVIDE_MISTAKES = (
         ),
     ),
     Mistake(
+        "rounded to decimals",
+        lambda s: _decimals(s) is not None,
+        lambda s: (
+            f"you rounded the result to {_decimals(s)} decimal{'s' * (_decimals(s) > 1)} (np.round(..., {_decimals(s)})): a quotient "
+            "such as 5 / 0.7 = 7.142857... has endless decimals; return the full floats, round only to print"
+        ),
+    ),
+    Mistake(
         "half a pixel added",
         lambda s: any(_same(s, s.h[:, :2] / s.h[:, 2:] + d) for d in (0.5, -0.5)),
         (
@@ -149,6 +157,12 @@ DIVIDE_MISTAKES = (
         ),
     ),
 )
+
+
+def _decimals(s) -> int | None:
+    """The k in 1..6 with answer = np.round(h[:, :2] / h[:, 2:], k), if there is one."""
+    right = s.h[:, :2] / s.h[:, 2:]
+    return next((k for k in range(1, 7) if _same(s, np.round(right, k))), None)
 
 
 def _rescaled(s) -> float | None:
@@ -274,6 +288,17 @@ def _follow_up(run) -> str | None:
     return None
 
 
+def _success_note(run) -> str:
+    """The line under the congratulation: the w = 0 test passed too, and what its row came back as."""
+    try:
+        with np.errstate(divide="ignore", invalid="ignore"):
+            row = np.asarray(run(_WITH_DIRECTION.copy()), dtype=float)[1]
+        shown = "[" + ", ".join(f"{v:g}" for v in row) + "]"
+    except AssertionError:  # Python's x / 0.0: a ZeroDivisionError, which also says 'no point'
+        shown = "a ZeroDivisionError"
+    return f"and on the w = 0 row: (3, -1.5, 0) came back as {shown}, no finite point, as a direction should"
+
+
 def divide_by_w(h):
     """Homogeneous rows back to points: divide each row's x and y by its own w.
 
@@ -340,6 +365,7 @@ register_exercise(
         exception_hint=_exception_hint,
         describe_input=_describe_h,
         follow_up=_follow_up,
+        success_note=_success_note,
         teaching=divide_by_w,
         ndarray_only=True,  # as lift and read_and_turn: the prompt asks for a numpy array
         wrong_variants=(
@@ -363,6 +389,14 @@ register_exercise(
             (_variant(lambda h: h[:, 2:] / h[:, :2]), "upside down"),
             (_variant(lambda h: (h[:, :2] / h[:, 2:]).T), "(2, N)"),
             (_variant(lambda h: np.rint(h[:, :2] / h[:, 2:])), "rounded"),
+            (
+                _variant(lambda h: (h[:, :2] / h[:, 2:]).round(2)),
+                "you rounded the result to 2 decimals",
+            ),
+            (
+                _variant(lambda h: (h[:, :2] / h[:, 2:]).round(3)),
+                "you rounded the result to 3 decimals",
+            ),
             (_variant(lambda h: h[:, :2] / (h[:, 2:] + 1e-12)), "w + eps"),
             (
                 _variant(_guarded),

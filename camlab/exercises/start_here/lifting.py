@@ -398,6 +398,8 @@ register_exercise(
             ),
             (_list_append, "no .append method"),
             (lambda p: np.append(np.ceil(p), 1.0), "np.ceil rounds up (2.5 became 3)"),
+            (lambda p: np.append(p.round(2), 1.0), "you rounded the result to 2 decimals"),
+            (lambda p: np.append(np.round(p, 3), 1.0), "you rounded the result to 3 decimals"),
             (lambda p: np.append(int(p), 1.0), "int() (or float()) converts one number"),
             (_unpack_three, "you unpacked it into three names"),
             (lambda p, w: np.append(p, w), "calls your function as lift(p), 1 argument"),

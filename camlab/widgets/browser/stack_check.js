@@ -12,7 +12,9 @@ export function drawStackCheck(ctx, scene, p) {
   if (Math.abs(p.angle) < scene.shortTurnDeg) way = [0, 0];
   const st = scene.styles;
   const arrow = { ...st.arrow, size: arrowheadSize(p.angle) * scene.pxPerPoint };
-  const arc = turnWay(p.angle, scene.wayRadius * p.scale, scene.waySweepDeg); // inside the house at every scale
+  // way_radius in widgets/start_here.py: inside the house, or outside both when the house is too small
+  const radius = p.scale >= scene.wayInsideMinScale ? scene.wayRadius * p.scale : scene.wayOutsideRadius;
+  const arc = turnWay(p.angle, radius, scene.waySweepDeg);
   for (const panel of scene.panels) {
     const T = panel.toPixels;
     const px = (pts) => mapPoints(T, pts);
