@@ -230,6 +230,27 @@ def test_panorama_rotation_helpers_say_their_direction():
     assert np.allclose(Rc @ panorama._rot(0.3, -0.1, 0.05), np.eye(3))
 
 
+def test_surface_points_span_each_plane_and_name_a_bad_n():
+    from camlab.fixtures import panorama
+
+    room = panorama.room_scene()
+    pts = panorama.surface_points([room[1]], n=5)
+    corners = np.asarray(room[1].corners_world)
+    assert pts.shape == (25, 3)
+    assert all(
+        np.min(np.linalg.norm(pts - c, axis=1)) < 1e-12 for c in corners
+    )  # the corners are in
+    assert np.allclose(pts.mean(axis=0), corners.mean(axis=0))  # spread evenly
+    assert panorama.surface_points(room[3], n=3).shape == (6 * 9, 3)  # the box: six faces
+    with pytest.raises(CamlabInputError, match="n must be at least 2"):
+        panorama.surface_points([room[1]], n=1)
+
+
+def test_panorama_set_exposures_are_its_gains():
+    s = data.load_panorama_set(scale=0.25)
+    assert s.exposures is s.gains and np.allclose(s.exposures, [1.0, 0.86, 1.12, 0.93])
+
+
 def test_lesson_01_church_window_heights_are_where_the_photo_says():
     """Lesson 01 measures five windows down their middle columns, each edge where the brightness crosses half-way
     between the white frame and the dark glass, interpolated: an independent walk from the frame finds the same

@@ -42,8 +42,9 @@ __all__ = [
 class PanoramaSet(NamedTuple):
     """The rotation set.
 
-    RGB ``images``, shared ``K``, cam_from_world ``R`` (n, 3, 3), ``gains``, ``H_true[j][i]`` = the
-    true homography from view i to view j, and the generator ``params``.
+    RGB ``images``, shared ``K``, cam_from_world ``R`` (n, 3, 3), ``gains`` (each view's rendered
+    exposure, the factor its signal was multiplied by; also readable as ``exposures``),
+    ``H_true[j][i]`` = the true homography from view i to view j, and the generator ``params``.
     """
 
     images: list
@@ -51,6 +52,18 @@ class PanoramaSet(NamedTuple):
     R: np.ndarray
     gains: np.ndarray
     params: dict
+
+    @property
+    def exposures(self) -> np.ndarray:
+        """Each view's rendered exposure (the same array as ``gains``).
+
+        Returns
+        -------
+        (n,) ndarray
+            The factor each view's signal was rendered with; gain compensation's gains undo it
+            (about ``exposures[ref] / exposures``).
+        """
+        return self.gains
 
     def true_homography(self, i: int, j: int) -> np.ndarray:
         """The ground-truth homography mapping view ``i``'s pixels to view ``j``'s: K R_j R_i^T K^-1.

@@ -146,7 +146,13 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
     )
     outl = view.animate(
         ax.plot(
-            [], [], "x", color=palette.RED, ms=4, label="outliers", path_effects=palette.halo()
+            [],
+            [],
+            "x",
+            color=palette.RED,
+            ms=4,
+            label="rejected by RANSAC",
+            path_effects=palette.halo(),
         )[0]
     )
     outline(
@@ -193,12 +199,12 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     """The histogram panel of :func:`ransac_registration`.
 
     The verdict text, two stacked bars per bin of :data:`_RESIDUAL_BINS` (the inliers green at
-    the bottom, the outliers grey on top; the end bars hatched) and the threshold line,
+    the bottom, the outliers red on top, as in the image panel; the end bars hatched) and the threshold line,
     registered with ``view`` in that order and returned.
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="matches per bin (tallest = 1)\ngreen: inliers, grey: outliers",
+        ylabel="matches per bin (tallest = 1)\ngreen: inliers, red: rejected",
         xscale="log",
         xlim=(
             0.014,
@@ -218,9 +224,9 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     bins, zeros = _RESIDUAL_BINS, np.zeros(len(_RESIDUAL_BINS) - 1)
     # each bin stacked by what RANSAC decided: a bin that straddles the threshold shows both kinds
     inl_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color=palette.GREEN)
-    out_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color="0.6")
+    out_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color=palette.RED)
     for end in (out_bars[0], out_bars[-1]):  # they also hold everything beyond the axis: marked
-        end.set(hatch="////", edgecolor="0.25", facecolor="0.75")
+        end.set(hatch="////", edgecolor="0.25")
     for end in (inl_bars[0], inl_bars[-1]):
         end.set(hatch="////", edgecolor="0.25")
     view.animate(*inl_bars, *out_bars)
@@ -230,7 +236,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
 
 
 def _set_residual_bars(bars: tuple, res: np.ndarray, inliers: np.ndarray) -> int:
-    """Stack each bin of :data:`_RESIDUAL_BINS`: the ``inliers`` of residuals ``res`` green, the rest grey on top.
+    """Stack each bin of :data:`_RESIDUAL_BINS`: the ``inliers`` of residuals ``res`` green, the rest red on top.
 
     Residuals beyond the axis are counted in the end bins. Returns the number of matches the
     green bars hold (every inlier, so the picture agrees with the verdict's count).
