@@ -589,3 +589,20 @@ def test_parallax_demo_nests_coinciding_marks_and_draws_none_outside_the_image()
         assert np.all(
             (u[shown] >= -0.5) & (u[shown] <= 639.5) & (v[shown] >= -0.5) & (v[shown] <= 479.5)
         )
+
+
+def test_hierarchy_and_drag_demos_share_one_rule_for_a_ratio_of_two_infinite_lengths():
+    """∞ / ∞ is undefined, never "inf": both edges of |top| / |bottom| pass through infinity at v1 = 15."""
+    from camlab.widgets.homographies.geometry import (
+        _measures_text,
+        _ratio,
+        transformation_hierarchy,
+    )
+
+    assert _ratio(np.inf, 2.0) == np.inf and _ratio(2.0, np.inf) == 0.0
+    assert np.isnan(_ratio(np.inf, np.inf))
+    demo = transformation_hierarchy()
+    demo.set(group="projective")
+    demo.set(v1=15.0)
+    row = next(r for r in _measures_text(demo.state["measures"]).splitlines() if "/ |bottom|" in r)
+    assert "undefined" in row and "inf" not in row, row
