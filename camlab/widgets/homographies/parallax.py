@@ -103,7 +103,7 @@ def plane_parallax() -> Demo:
     Demo
         The demo: controls ``move`` (metres), ``turn`` (degrees) and ``plane`` (d, metres), the
         figure (camera 2's 640 x 480 image: grey rings at :math:`H x`, the points at the three
-        depths, each joined to its ring) and ``state`` (``H``, ``parallax``: depth -> the
+        depths, each joined to its ring by a line cut at the image's border) and ``state`` (``H``, ``parallax``: depth -> the
         median parallax over the rays whose two marks are both inside camera 2's image, pixels;
         ``outside``: depth -> how many of the 12 rays that leaves out).
 
@@ -120,7 +120,13 @@ def plane_parallax() -> Demo:
     ax.set(
         xlim=(-30, 670), ylim=(505, -25), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
     )
-    ax.set_title("camera 2's 640 x 480 image (dotted); marks outside it are not drawn", fontsize=10)
+    ax.set_title(
+        "camera 2's 640 x 480 image (dotted): a line to a mark outside it stops at its edge",
+        fontsize=10,
+    )
+    # each ring's line to its point is cut at the image's border, so a point whose ring (or a ring
+    # whose point) lies outside still shows which way its partner is
+    frame = Rectangle((-0.5, -0.5), 640, 480, transform=ax.transData)
     rings = view.animate(
         ax.plot(
             [],
@@ -135,7 +141,7 @@ def plane_parallax() -> Demo:
     )
     gaps, seen = [], []
     for Z, (marker, colour, size) in zip(DEPTHS, _LOOKS, strict=True):
-        gaps.append(view.animate(ax.plot([], [], "-", color=colour, lw=1.2)[0]))
+        gaps.append(view.animate(ax.plot([], [], "-", color=colour, lw=1.2, clip_path=frame)[0]))
         seen.append(
             view.animate(
                 ax.plot(
@@ -166,7 +172,7 @@ def plane_parallax() -> Demo:
         parallax, hidden, common = _median_parallax(predicted, wheres)
         nested = max(parallax.values(), default=0.0) < 1.0  # the three marks coincide: nest them
         for Z, gap_art, seen_art, look in zip(DEPTHS, gaps, seen, _LOOKS, strict=True):
-            gap_art.set_data(*_segments(_in_view(predicted), _in_view(wheres[Z])).T)
+            gap_art.set_data(*_segments(predicted, wheres[Z]).T)  # clipped to the image
             seen_art.set_data(*_in_view(wheres[Z]).T)
             seen_art.set_markersize(_NESTED[Z] if nested else look[2])
         state.update(H=H, parallax=parallax, outside=hidden, common=common)
