@@ -141,7 +141,8 @@ def plane_parallax() -> Demo:
     )
     gaps, seen = [], []
     for Z, (marker, colour, size) in zip(DEPTHS, _LOOKS, strict=True):
-        gaps.append(view.animate(ax.plot([], [], "-", color=colour, lw=1.2, clip_path=frame)[0]))
+        gaps.append(view.animate(ax.plot([], [], "-", color=colour, lw=1.2)[0]))
+        gaps[-1].set_clip_path(frame)  # after plot: add_line keeps the axes' clip box only
         seen.append(
             view.animate(
                 ax.plot(
