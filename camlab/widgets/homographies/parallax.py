@@ -84,36 +84,8 @@ def _median_parallax(predicted, wheres) -> tuple[dict, dict, int]:
     return parallax, hidden, int(common.sum())
 
 
-@register(lesson="07", sweep={"move": [0.0, -0.6, 0.6], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
-def plane_parallax() -> Demo:
-    r"""Move and turn camera 2: the plane's homography, and the parallax of points off the plane.
-
-    Camera 1 is :math:`K[I \mid 0]`; camera 2 is :math:`K[R \mid t]`, turned by ``turn``
-    degrees about its vertical axis (plus a fixed small tilt) and moved ``move`` metres
-    sideways (``t = (move, -move / 4, move / 8)``). The plane is :math:`Z = d` in camera 1
-    (``plane``), so :math:`n = (0, 0, -1)` and :math:`H = K(R - t n^T / d)K^{-1}`
-    (:func:`camlab.homography.plane_homography`). On 12 rays of camera 1 sit points at
-    the depths :data:`DEPTHS`; camera 2 sees each where it really is, and :math:`H` sends
-    camera 1's pixel of the ray to where the point *of the plane* on that ray would appear.
-    The gap is the parallax: zero on the plane, zero for every depth when camera 2 only turns,
-    and otherwise proportional to :math:`|1/Z - 1/d|` to first order.
-
-    Returns
-    -------
-    Demo
-        The demo: controls ``move`` (metres), ``turn`` (degrees) and ``plane`` (d, metres), the
-        figure (camera 2's 640 x 480 image: grey rings at :math:`H x`, the points at the three
-        depths, each joined to its ring by a line cut at the image's border) and ``state`` (``H``, ``parallax``: depth -> the
-        median parallax over the rays whose two marks are both inside camera 2's image, pixels;
-        ``outside``: depth -> how many of the 12 rays that leaves out).
-
-    References
-    ----------
-    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 13.1,
-       eq. (13.2).
-    """
-    rays = _rays()
-    x_first = _project(rays, np.eye(3), np.zeros(3))  # camera 1: one pixel per ray
+def _parallax_figure():
+    """The parallax demo's figure: its view, the rings' artist, and per depth the lines and the points."""
     view = FigureView(figsize=(6.4, 5.0))
     ax = view.fig.subplots()
     ax.add_patch(Rectangle((-0.5, -0.5), 640, 480, fill=False, ec="0.6", lw=1, ls=":"))
@@ -159,6 +131,40 @@ def plane_parallax() -> Demo:
             )
         )
     view.fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    return view, rings, gaps, seen
+
+
+@register(lesson="07", sweep={"move": [0.0, -0.6, 0.6], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
+def plane_parallax() -> Demo:
+    r"""Move and turn camera 2: the plane's homography, and the parallax of points off the plane.
+
+    Camera 1 is :math:`K[I \mid 0]`; camera 2 is :math:`K[R \mid t]`, turned by ``turn``
+    degrees about its vertical axis (plus a fixed small tilt) and moved ``move`` metres
+    sideways (``t = (move, -move / 4, move / 8)``). The plane is :math:`Z = d` in camera 1
+    (``plane``), so :math:`n = (0, 0, -1)` and :math:`H = K(R - t n^T / d)K^{-1}`
+    (:func:`camlab.homography.plane_homography`). On 12 rays of camera 1 sit points at
+    the depths :data:`DEPTHS`; camera 2 sees each where it really is, and :math:`H` sends
+    camera 1's pixel of the ray to where the point *of the plane* on that ray would appear.
+    The gap is the parallax: zero on the plane, zero for every depth when camera 2 only turns,
+    and otherwise proportional to :math:`|1/Z - 1/d|` to first order.
+
+    Returns
+    -------
+    Demo
+        The demo: controls ``move`` (metres), ``turn`` (degrees) and ``plane`` (d, metres), the
+        figure (camera 2's 640 x 480 image: grey rings at :math:`H x`, the points at the three
+        depths, each joined to its ring by a line cut at the image's border) and ``state`` (``H``, ``parallax``: depth -> the
+        median parallax over the rays whose two marks are both inside camera 2's image, pixels;
+        ``outside``: depth -> how many of the 12 rays that leaves out).
+
+    References
+    ----------
+    .. [1] Hartley & Zisserman, *Multiple View Geometry*, 2nd ed., 2004, section 13.1,
+       eq. (13.2).
+    """
+    rays = _rays()
+    x_first = _project(rays, np.eye(3), np.zeros(3))  # camera 1: one pixel per ray
+    view, rings, gaps, seen = _parallax_figure()
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
