@@ -416,13 +416,24 @@ def test_dlt_exercise_notes_a_scaling_without_centring(capsys):
     for student in (scale_only, scale_by_mean_abs):
         assert check("dlt_homography", student)
         assert "without first moving its centroid to 0" in capsys.readouterr().out
+    assert check("dlt_homography", all_exercises()["dlt_homography"].reference)
+    assert "centroid" not in capsys.readouterr().out
+
+
+def test_dlt_exercise_rejects_an_h_divided_by_an_h33_that_is_rounding_noise():
+    """Test input 6 has h33 = 0: a right DLT divided by its h33 (~1e-17) has entries ~1e18 and fails,
+    by name; OpenCV's findHomography scales its answer so too. Unit norm or any other scale passes."""
+    from camlab.exercises.homographies import dlt as dlt_exercise
+
     cv2 = pytest.importorskip("cv2")
-    for centred in (
-        all_exercises()["dlt_homography"].reference,
+    for divided in (
+        lambda s, d: (lambda H: H / H[2, 2])(dlt_exercise.dlt_homography(s, d)),
         lambda s, d: cv2.findHomography(np.asarray(s, float), np.asarray(d, float), 0)[0],
     ):
-        assert check("dlt_homography", centred)
-        assert "centroid" not in capsys.readouterr().out
+        with pytest.raises(AssertionError, match="you divided H by its h33"):
+            check("dlt_homography", divided)
+    for scaled in (lambda H: H / np.linalg.norm(H), lambda H: -3.0 * H):
+        assert check("dlt_homography", lambda s, d, f=scaled: f(dlt_exercise.dlt_homography(s, d)))
 
 
 def test_dlt_exercise_rejects_fixing_h33_on_an_h_with_h33_zero(capsys):
@@ -589,3 +600,20 @@ def test_parallax_demo_nests_coinciding_marks_and_draws_none_outside_the_image()
         assert np.all(
             (u[shown] >= -0.5) & (u[shown] <= 639.5) & (v[shown] >= -0.5) & (v[shown] <= 479.5)
         )
+
+
+def test_hierarchy_and_drag_demos_share_one_rule_for_a_ratio_of_two_infinite_lengths():
+    """∞ / ∞ is undefined, never "inf": both edges of |top| / |bottom| pass through infinity at v1 = 15."""
+    from camlab.widgets.homographies.geometry import (
+        _measures_text,
+        _ratio,
+        transformation_hierarchy,
+    )
+
+    assert _ratio(np.inf, 2.0) == np.inf and _ratio(2.0, np.inf) == 0.0
+    assert np.isnan(_ratio(np.inf, np.inf))
+    demo = transformation_hierarchy()
+    demo.set(group="projective")
+    demo.set(v1=15.0)
+    row = next(r for r in _measures_text(demo.state["measures"]).splitlines() if "/ |bottom|" in r)
+    assert "undefined" in row and "inf" not in row, row

@@ -203,7 +203,14 @@ def largest_patch_lost(live: np.ndarray, full: np.ndarray, size: int = 5) -> flo
 
 # Demos checked for small lost details too (a static marker under a moving line: lesson 01's
 # pinhole dot went white under a ray's halo in every live frame, 0.03 % of the pixels).
-SMALL_DETAILS = ["pinhole_projection", "pinhole_size", "similar_triangles"]
+# Lesson 07's hierarchy demo lost its open "before H" cross-ratio markers under the warped
+# picture in every live frame (235 pixels, 0.07 %).
+SMALL_DETAILS = [
+    "pinhole_projection",
+    "pinhole_size",
+    "similar_triangles",
+    "transformation_hierarchy",
+]
 
 
 @pytest.mark.parametrize("name", SMALL_DETAILS)

@@ -76,6 +76,13 @@ UNDO_MISTAKES = (
         "T_src applies a normalisation src never had. Normalise both sets before building A.",
     ),
     Mistake(
+        "raw pixels, normalisation undone",
+        lambda s: np.linalg.inv(s.Td) @ s.H @ s.Ts,
+        "you built A from the raw pixels, yet undid a normalisation (inv(T_dst) @ H @ T_src): the "
+        "points that went into A were never normalised, so the undo applies a T they never had. "
+        "Normalise first (src_n = T_src x, dst_n = T_dst x'), build A from src_n and dst_n, then undo.",
+    ),
+    Mistake(
         "destination's normalisation only undone",
         lambda s: np.linalg.inv(s.Td) @ s.Hn,
         "you undid only the destination's normalisation (inv(T_dst) @ H_n): the result still "

@@ -329,8 +329,26 @@ def _noisy_case(expected) -> bool:
     return _far_error(expected) < FAR_TOLERANCE_PX
 
 
+def _divided_by_noise(got, expected) -> bool:
+    """True for an H divided by its h33 where the true h33 is 0: h33 comes back 1, the rest ~1e9 to 1e18.
+
+    The SVD's h33 there is rounding noise (~1e-17 of a unit-norm h); dividing by it keeps the
+    direction of h, so an up-to-scale comparison alone would pass it (OpenCV's findHomography
+    scales its answer so, too).
+    """
+    g, e = np.asarray(got, dtype=float), np.asarray(expected, dtype=float)
+    if g.shape != (3, 3) or abs(e[2, 2]) > 1e-9 * np.linalg.norm(e) or not np.isfinite(g).all():
+        return False
+    return bool(abs(abs(g[2, 2]) - 1.0) < 1e-6 and np.linalg.norm(g) > 1e6)
+
+
 def _same_homography(got, expected) -> bool:
-    """Equal up to scale (exact inputs), or, on the noisy input, within FAR_TOLERANCE_PX of the truth."""
+    """Equal up to scale (exact inputs), or, on the noisy input, within FAR_TOLERANCE_PX of the truth.
+
+    Never an H divided by an h33 that is rounding noise (:func:`_divided_by_noise`).
+    """
+    if _divided_by_noise(got, expected):
+        return False
     if same_up_to_scale(got, expected, rtol=1e-6):
         return True
     g = np.asarray(got, dtype=float)
@@ -390,6 +408,14 @@ def _h33_slip(g, src, dst, expected) -> str:
     e = np.asarray(expected, dtype=float)
     if abs(e[2, 2]) > 1e-9 * np.linalg.norm(e):
         return ""
+    if _divided_by_noise(g, e):
+        return (
+            f"you divided H by its h33 (h33 = 1, but the largest entry is {np.abs(g).max():.2g}). This "
+            f"input's true h33 is 0: H sends the pixel origin to infinity, and the SVD's h33 is rounding "
+            f"noise (about 1e-17), so dividing by it blows the other entries up to {np.abs(g).max():.2g}. "
+            f"Return the SVD's unit-norm h as it is (h.reshape(3, 3), any scale); "
+            f"cv2.findHomography divides by h33 too, so it cannot serve here."
+        )
     if not np.isfinite(g).all() or abs(g[2, 2]) < 1e-6 * np.linalg.norm(g):
         return ""
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -406,6 +432,12 @@ def _dlt_h33_fixed(src, dst):
     """The DLT with h33 = 1 fixed, by least squares on the raw pixels (a tutorial's form: no SVD)."""
     A = _dlt_rows(src, dst)
     return np.append(np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)[0], 1.0).reshape(3, 3)
+
+
+def _dlt_raw_then_undone(src, dst):
+    """T_src and T_dst computed and "undone", but A built from the raw pixels (a slip)."""
+    Ts, Td = _normalisers(np.asarray(src, float), np.asarray(dst, float))[0]
+    return np.linalg.inv(Td) @ _dlt_unnormalised(src, dst) @ Ts
 
 
 def _half_pixel(g, src, dst) -> str:
@@ -726,6 +758,11 @@ register_exercise(
             (lambda s, d: hg.estimate_homography(np.asarray(s) + 0.5, d), "half-pixel offset"),
             (lambda s, d: hg.estimate_homography(s, d).tolist(), "you returned a list"),
             (_dlt_h33_fixed, "you fixed h33 = 1"),
+            (_dlt_raw_then_undone, "you built A from the raw pixels, yet undid"),
+            (
+                lambda s, d: (lambda H: H / H[2, 2])(dlt_homography(s, d)),
+                "you divided H by its h33",
+            ),
             (_dlt_points_times_t, "with X @ T, but"),
             (
                 lambda s, d: hg.estimate_homography(np.asarray(s)[:4], np.asarray(d)[:4]),

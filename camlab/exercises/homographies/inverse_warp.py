@@ -283,6 +283,16 @@ _WARP_MISTAKES = (
         "from 0: out[v', u'] is the point (u', v') itself, u' in range(width).",
     ),
     Mistake(
+        "output and source counted from 1",
+        lambda c: _warp(
+            c.image, np.linalg.inv(c.H), c.shape, shift=1.0, rounding=lambda x: np.rint(x) - 1
+        ),
+        "you counted the pixels from 1 (as MATLAB does), both of them: output pixel out[v', u'] was "
+        "mapped from the point (u' + 1, v' + 1) and read image[iv - 1, iu - 1]. The two shifts cancel "
+        "only under a pure translation; H^-1 scales and turns the first one. numpy and the course count "
+        "from 0: map the point (u', v') itself and read image[iv, iu].",
+    ),
+    Mistake(
         "pixel corners",
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, shift=0.5, rounding=np.floor),
         "you sampled at H^-1 (u' + 0.5, v' + 0.5, 1) and took np.floor: the pixel-*corner* convention, "
@@ -441,6 +451,12 @@ register_exercise(
         wrong_variants=(
             (lambda im, H, s: _warp(im, H, s), "H (u', v', 1)"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, first=1), "counted from 1"),
+            (
+                lambda im, H, s: _warp(
+                    im, np.linalg.inv(H), s, shift=1.0, rounding=lambda x: np.rint(x) - 1
+                ),
+                "counted the pixels from 1 (as MATLAB does), both",
+            ),
             (
                 lambda im, H, s: np.where(_reference(im, H, s) == 0, np.nan, _reference(im, H, s)),
                 "hold NaN",

@@ -109,6 +109,31 @@ _PLANE_MISTAKES = (
         "(a 3 x 3 matrix): (t n^T) X = t (n^T X). Use np.outer(t, n), or t[:, None] @ n[None, :].",
     ),
     Mistake(
+        "t * n",
+        lambda c: _with(c, c.R - (c.t.ravel() * c.n.ravel()) / c.d),
+        "you wrote t * n, numpy's element-wise product: a 3-vector, which R - t * n / d then subtracts "
+        "from every row of R (broadcasting). The formula has the outer product t n^T, a 3 x 3 matrix: "
+        "np.outer(t, n), or t[:, None] * n[None, :].",
+    ),
+    Mistake(
+        "np.dot(t, n)",
+        lambda c: _with(c, c.R - (c.n @ c.t).item() / c.d),
+        "you wrote np.dot(t, n) (or t @ n): the dot product, one number, which R - ... then subtracts "
+        "from every entry of R. The formula has the outer product t n^T, a 3 x 3 matrix: np.outer(t, n).",
+    ),
+    Mistake(
+        "t in mm",
+        lambda c: _with(c, c.R - 1000 * c.t @ c.n / c.d),
+        "your t is 1000 times too long: t in millimetres with d in metres. t / d is a ratio, so both "
+        "must be in one unit (the test gives both in metres): H = K (R - t n^T / d) K^-1.",
+    ),
+    Mistake(
+        "d in mm",
+        lambda c: _with(c, c.R - c.t @ c.n / (1000 * c.d)),
+        "your d is 1000 times too large: d in millimetres with t in metres. t / d is a ratio, so both "
+        "must be in one unit (the test gives both in metres): H = K (R - t n^T / d) K^-1.",
+    ),
+    Mistake(
         "K order",
         lambda c: _with(c, c.R - c.t @ c.n / c.d, np.linalg.inv(c.K), c.K),
         "you wrote K^-1 (R - t n^T / d) K: the K's are the wrong way round. H takes pixels of image 1 "

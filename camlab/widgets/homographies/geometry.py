@@ -140,9 +140,6 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     def length(i: int, j: int) -> float:  # an edge's image; infinite when w changes sign along it
         return float(np.linalg.norm(m[i] - m[j])) if w[i] * w[j] > 0 else np.inf
 
-    def ratio(a: float, b: float) -> float:  # inf when either edge runs through infinity
-        return a / b if np.isfinite(a) and np.isfinite(b) else np.inf
-
     def between(x1: np.ndarray, x2: np.ndarray, axis: int) -> float:
         """The angle (degrees) between the images of one source direction at x1 and at x2 (J d, J as in mapped_angle)."""
         d1, d2 = (
@@ -156,8 +153,8 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     rows = {
         "top-left angle (°)": (90.0, hg.mapped_angle(H, tl, tr - tl, bl - tl), 0.1, True),
         "|top| (px)": (pw - 1.0, length(0, 1), 1e-3, False),
-        "|top| / |left|": ((pw - 1) / (ph - 1), ratio(length(0, 1), length(0, 3)), 1e-3, False),
-        "|top| / |bottom|": (1.0, ratio(length(0, 1), length(3, 2)), 1e-3, False),
+        "|top| / |left|": ((pw - 1) / (ph - 1), _ratio(length(0, 1), length(0, 3)), 1e-3, False),
+        "|top| / |bottom|": (1.0, _ratio(length(0, 1), length(3, 2)), 1e-3, False),
         "top vs bottom edge (°)": (0.0, between(tl, bl, 0), 0.1, True),
         "left vs right edge (°)": (0.0, between(tl, tr, 1), 0.1, True),
         "cross-ratio, diagonal": (
@@ -173,24 +170,47 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     }
 
 
+def _ratio(a: float, b: float) -> float:
+    """Two lengths' ratio, either possibly infinite: inf / finite is inf, finite / inf is 0, inf / inf NaN.
+
+    One rule for both lesson 07 demos (the hierarchy's readout and the drag demo's table), which
+    show the NaN as *undefined*: two infinite lengths have no ratio.
+    """
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return float(np.divide(a, b))
+
+
+def _shown(x: float, spec: str) -> str:
+    """A measured value as the lesson 07 readouts print it: ∞ for an infinite length, *undefined* for ∞ / ∞."""
+    return f"{x:{spec}}" if np.isfinite(x) else ("∞" if x == np.inf else "undefined")
+
+
 def _measures_text(measures: dict) -> str:
     """The hierarchy readout's table of measured invariants: before, after, kept or changes."""
     lines = [f"{'measured on the picture':24s}{'source':>9s}{'mapped':>10s}"]
     for name, (a, b, kept) in measures.items():
-        lines.append(f"{name:24s}{a:9.3f}{b:10.3f}  {'kept' if kept else 'changes'}")
+        verdict = "kept" if kept else ("(∞ / ∞)" if np.isnan(b) else "changes")
+        lines.append(f"{name:24s}{a:9.3f}{_shown(b, '.3f'):>10s}  {verdict}")
     return "\n".join(lines)
 
 
 def _diagonal_artists(view, ax, before):
-    """The four diagonal points of the cross-ratio: before H (open, static) and mapped (filled, animated)."""
-    ax.plot(
-        *before.T,
-        "o",
-        mfc="white",
-        mec=palette.BROWN,
-        mew=1.5,
-        ms=6,
-        zorder=4,
+    """The four diagonal points of the cross-ratio: before H (open) and mapped (filled).
+
+    Both are animated: the warped picture is an animated image, and a static marker would sit in
+    the cached background under it, lost in every live frame.
+    """
+    view.animate(
+        ax.plot(
+            *before.T,
+            "o",
+            mfc="white",
+            mec=palette.BROWN,
+            mew=1.5,
+            ms=6,
+            zorder=4,
+            label="cross-ratio points, before H",
+        )[0]
     )
     return view.animate(
         ax.plot(
@@ -201,7 +221,7 @@ def _diagonal_artists(view, ax, before):
             mec="white",
             ms=6,
             zorder=5,
-            label="cross-ratio points\n(open: before H)",
+            label="cross-ratio points, after H",
         )[0]
     )
 
@@ -565,8 +585,8 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
         |AD| in pixels, in the source and in the image (inf where the image of AD runs
         through infinity, shown as ∞).
     ratio0, ratio1 : float
-        |AB| / |CD|, in the source and in the image (inf or 0 where one of the two segments runs
-        through infinity, NaN where both do).
+        |AB| / |CD|, in the source and in the image (:func:`_ratio`: inf or 0 where one of the two
+        segments runs through infinity, NaN, shown as *undefined*, where both do).
     angle0, angle1 : float
         The top-left corner's angle in degrees, in the source and in the image.
 
@@ -579,21 +599,18 @@ def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) 
     def verdict(same: bool) -> str:
         return "kept" if same else "changes"
 
-    def shown(x: float, spec: str) -> str:  # a segment through infinity has no finite length
-        return f"{x:{spec}}" if np.isfinite(x) else ("∞" if x == np.inf else "∞ / ∞")
-
     return [
         ("cross-ratio", f"{cr0:.4f}", f"{cr1:.4f}", verdict(np.isclose(cr0, cr1, rtol=1e-3))),
         (
             "|AD| (px)",
             f"{length0:.1f}",
-            shown(length1, ".1f"),
+            _shown(length1, ".1f"),
             verdict(np.isclose(length0, length1, rtol=1e-3)),
         ),
         (
             "|AB| / |CD|",
             f"{ratio0:.4f}",
-            shown(ratio1, ".4f"),
+            _shown(ratio1, ".4f"),
             verdict(np.isclose(ratio0, ratio1, rtol=1e-3)),
         ),
         ("top-left angle", f"{angle0:.1f}°", f"{angle1:.1f}°", verdict(abs(angle0 - angle1) < 0.1)),
@@ -694,8 +711,7 @@ def _drag_measures(line_pts, m, H) -> tuple:
     cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
     length0, length1 = float(np.linalg.norm(line_pts[3] - line_pts[0])), image_length(0, 3)  # |AD|
     ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
-    with np.errstate(invalid="ignore", divide="ignore"):
-        ratio1 = np.divide(image_length(0, 1), image_length(2, 3))
+    ratio1 = _ratio(image_length(0, 1), image_length(2, 3))
     # the angle between the mapped edges' tangents at the mapped corner (not the chords to the
     # target corners, which point backwards along an edge that passes through infinity)
     angle = hg.mapped_angle(H, SQUARE[0], SQUARE[1] - SQUARE[0], SQUARE[3] - SQUARE[0])

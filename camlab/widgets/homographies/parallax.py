@@ -84,6 +84,56 @@ def _median_parallax(predicted, wheres) -> tuple[dict, dict, int]:
     return parallax, hidden, int(common.sum())
 
 
+def _parallax_figure():
+    """The parallax demo's figure: its view, the rings' artist, and per depth the lines and the points."""
+    view = FigureView(figsize=(6.4, 5.0))
+    ax = view.fig.subplots()
+    ax.add_patch(Rectangle((-0.5, -0.5), 640, 480, fill=False, ec="0.6", lw=1, ls=":"))
+    ax.set(
+        xlim=(-30, 670), ylim=(505, -25), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
+    )
+    ax.set_title(
+        "camera 2's 640 x 480 image (dotted): a line to a mark outside it stops at its edge",
+        fontsize=10,
+    )
+    # each ring's line to its point is cut at the image's border, so a point whose ring (or a ring
+    # whose point) lies outside still shows which way its partner is
+    frame = Rectangle((-0.5, -0.5), 640, 480, transform=ax.transData)
+    rings = view.animate(
+        ax.plot(
+            [],
+            [],
+            "o",
+            ms=14,
+            mfc="none",
+            mec=palette.GREY,
+            mew=1.5,
+            label="H x: camera 1's pixel, mapped by H",
+        )[0]
+    )
+    gaps, seen = [], []
+    for Z, (marker, colour, size) in zip(DEPTHS, _LOOKS, strict=True):
+        gaps.append(view.animate(ax.plot([], [], "-", color=colour, lw=1.2)[0]))
+        gaps[-1].set_clip_path(frame)  # after plot: add_line keeps the axes' clip box only
+        seen.append(
+            view.animate(
+                ax.plot(
+                    [],
+                    [],
+                    marker,
+                    ms=size,
+                    color=colour,
+                    mec="k",
+                    mew=0.6,
+                    ls="none",
+                    label=f"seen by camera 2, Z = {Z:g} m",
+                )[0]
+            )
+        )
+    view.fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    return view, rings, gaps, seen
+
+
 @register(lesson="07", sweep={"move": [0.0, -0.6, 0.6], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
 def plane_parallax() -> Demo:
     r"""Move and turn camera 2: the plane's homography, and the parallax of points off the plane.
@@ -103,7 +153,7 @@ def plane_parallax() -> Demo:
     Demo
         The demo: controls ``move`` (metres), ``turn`` (degrees) and ``plane`` (d, metres), the
         figure (camera 2's 640 x 480 image: grey rings at :math:`H x`, the points at the three
-        depths, each joined to its ring) and ``state`` (``H``, ``parallax``: depth -> the
+        depths, each joined to its ring by a line cut at the image's border) and ``state`` (``H``, ``parallax``: depth -> the
         median parallax over the rays whose two marks are both inside camera 2's image, pixels;
         ``outside``: depth -> how many of the 12 rays that leaves out).
 
@@ -114,44 +164,7 @@ def plane_parallax() -> Demo:
     """
     rays = _rays()
     x_first = _project(rays, np.eye(3), np.zeros(3))  # camera 1: one pixel per ray
-    view = FigureView(figsize=(6.4, 5.0))
-    ax = view.fig.subplots()
-    ax.add_patch(Rectangle((-0.5, -0.5), 640, 480, fill=False, ec="0.6", lw=1, ls=":"))
-    ax.set(
-        xlim=(-30, 670), ylim=(505, -25), aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)"
-    )
-    ax.set_title("camera 2's 640 x 480 image (dotted); marks outside it are not drawn", fontsize=10)
-    rings = view.animate(
-        ax.plot(
-            [],
-            [],
-            "o",
-            ms=14,
-            mfc="none",
-            mec=palette.GREY,
-            mew=1.5,
-            label="H x: camera 1's pixel, mapped by H",
-        )[0]
-    )
-    gaps, seen = [], []
-    for Z, (marker, colour, size) in zip(DEPTHS, _LOOKS, strict=True):
-        gaps.append(view.animate(ax.plot([], [], "-", color=colour, lw=1.2)[0]))
-        seen.append(
-            view.animate(
-                ax.plot(
-                    [],
-                    [],
-                    marker,
-                    ms=size,
-                    color=colour,
-                    mec="k",
-                    mew=0.6,
-                    ls="none",
-                    label=f"seen by camera 2, Z = {Z:g} m",
-                )[0]
-            )
-        )
-    view.fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    view, rings, gaps, seen = _parallax_figure()
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
@@ -166,7 +179,7 @@ def plane_parallax() -> Demo:
         parallax, hidden, common = _median_parallax(predicted, wheres)
         nested = max(parallax.values(), default=0.0) < 1.0  # the three marks coincide: nest them
         for Z, gap_art, seen_art, look in zip(DEPTHS, gaps, seen, _LOOKS, strict=True):
-            gap_art.set_data(*_segments(_in_view(predicted), _in_view(wheres[Z])).T)
+            gap_art.set_data(*_segments(predicted, wheres[Z]).T)  # clipped to the image
             seen_art.set_data(*_in_view(wheres[Z]).T)
             seen_art.set_markersize(_NESTED[Z] if nested else look[2])
         state.update(H=H, parallax=parallax, outside=hidden, common=common)
