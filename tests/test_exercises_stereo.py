@@ -189,3 +189,41 @@ def test_hartley_H2_names_an_unsigned_f_apart_from_a_wrong_G31_sign():
     with pytest.raises(AssertionError) as info:
         check("hartley_H2", lambda e, s: _h2(e, s, g_sign=1.0))
     assert "G31 = +1/f" in str(info.value) and "f is signed" not in str(info.value), str(info.value)
+
+
+@pytest.mark.parametrize(
+    "keywords, needle",
+    [
+        (dict(degrees=True), "in degrees"),
+        (dict(g_is_f=True), "G31 = -f"),
+        (dict(transpose=True), "transposed"),
+        (dict(t_in_product=False), "left T out of the product"),
+    ],
+)
+def test_hartley_H2_names_degrees_transpose_g_is_f_and_a_dropped_t(keywords, needle):
+    """Each slip a reviewer fed the check gets its own cause, not the generic fallback."""
+    from camlab.exercises.stereo_rectification.hartley import _h2
+
+    with pytest.raises(AssertionError) as info:
+        check("hartley_H2", lambda e, s: _h2(e, s, **keywords))
+    assert needle in str(info.value) and "check T (centre" not in str(info.value), str(info.value)
+
+
+def test_hartley_H2_wrong_sign_t_is_named_and_the_fallback_never_shows_the_target():
+    """T by +c sends the epipole to infinity too: named; an unnamed such H2 never prints [1, -0, 0]."""
+    from camlab.exercises.stereo_rectification.hartley import _h2
+
+    def plus_c(e, s):
+        return _h2(e, s, centre=(-(s[0] - 1) / 2, -(s[1] - 1) / 2))
+
+    with pytest.raises(AssertionError) as info:
+        check("hartley_H2", plus_c)
+    assert "translates by +c" in str(info.value), str(info.value)
+
+    def off_centre(e, s):  # an unnamed centre: the epipole still goes to infinity
+        return _h2(e, s, centre=((s[0] - 1) / 2 + 37, (s[1] - 1) / 2 - 11))
+
+    with pytest.raises(AssertionError) as info:
+        check("hartley_H2", off_centre)
+    cause = str(info.value).split("likely cause:")[1]
+    assert "does send the epipole to infinity" in cause and "-0" not in cause, cause

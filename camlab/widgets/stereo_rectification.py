@@ -78,7 +78,7 @@ def _line_polyline(lines: np.ndarray, size: tuple[int, int] = SIZE) -> np.ndarra
     return out.reshape(-1, 2)
 
 
-def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
+def _epipolar_legends(fig, depth_dots, epi_r) -> None:
     """The keys of :func:`_epipolar_figure`, below the images, not over them.
 
     Every corner of the right image carries lines; the epipole's two looks (a star inside, an
@@ -91,45 +91,35 @@ def _epipolar_legends(axl, axr, depth_dots, epi_r) -> None:
 
     pale = {
         "color": palette.RED,
-        "lw": 0.9,
+        "lw": 1.1,
         "ls": ":",
     }  # epipolar lines are red; the fixed pencil thin, dotted
-    axl.legend(
+    fig.legend(  # one key below both images, in column pairs: left | right
         [
             key(**pale, marker="s", mfc="w", mec=palette.RED, ms=6),
-            key(color=palette.TAB_RED, lw=1.2, ls="--"),
-            key(marker="o", color=palette.TAB_RED, ls="none"),
-        ],
-        ["5 fixed pixels, their epipolar lines", "l, the point's line", "point x"],
-        loc="upper left",
-        bbox_to_anchor=(-0.08, -0.18),
-        ncol=3,
-        handlelength=1.5,
-        columnspacing=1.0,
-        fontsize=8,
-        frameon=False,
-    )
-    axr.legend(
-        [
             key(**pale),
+            key(color=palette.TAB_RED, lw=1.2, ls="--"),
             key(color=palette.TAB_RED, lw=1.8),
+            key(marker="o", color=palette.TAB_RED, ls="none"),
             depth_dots,
             epi_r,
             key(marker=">", color="k", lw=1.8, ms=7),
         ],
         [
-            "their lines here",
-            "l' = F x",
-            "depth 1, ..., 6 m",
+            "left: 5 fixed pixels, their epipolar lines",
+            "right: the 5 pixels' lines",
+            "left: l, the point's line",
+            "right: l' = F x",
+            "left: point x",
+            "right: depth 1, ..., 6 m",
             "star: epipole in the image",
             "arrow: epipole off the image",
         ],
-        loc="upper right",
-        bbox_to_anchor=(1.0, -0.18),
-        ncol=3,
-        handlelength=1.5,
-        columnspacing=1.0,
-        fontsize=8,
+        loc="outside lower center",
+        ncol=4,
+        handlelength=1.8,
+        columnspacing=1.2,
+        fontsize=9,
         frameon=False,
     )
 
@@ -147,8 +137,8 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     (wl,) = axl.plot([], [], color="0.55", lw=0.8)
     (wr,) = axr.plot([], [], color="0.55", lw=0.8)
     # the fixed pencil thin and dotted: told apart from the point's line by more than colour
-    (pencil_l,) = axl.plot([], [], color=palette.RED, lw=0.9, ls=":")
-    (pencil_r,) = axr.plot([], [], color=palette.RED, lw=0.9, ls=":")
+    (pencil_l,) = axl.plot([], [], color=palette.RED, lw=1.1, ls=":")
+    (pencil_r,) = axr.plot([], [], color=palette.RED, lw=1.1, ls=":")
     (point,) = axl.plot([], [], "o", color=palette.TAB_RED, ms=8)
     (line_l,) = axl.plot([], [], color=palette.TAB_RED, lw=1.2, ls="--")
     (line_r,) = axr.plot([], [], color=palette.TAB_RED, lw=1.8)
@@ -158,7 +148,7 @@ def _epipolar_figure(view: FigureView) -> SimpleNamespace:
     # an epipole off the image: an arrow (shaft + head) at the border pointing to it
     shafts = [ax.plot([], [], color="k", lw=1.8)[0] for ax in (axl, axr)]
     heads = [ax.plot([], [], color="k", ms=9, ls="none")[0] for ax in (axl, axr)]
-    _epipolar_legends(axl, axr, depth_dots, epi_r)
+    _epipolar_legends(view.fig, depth_dots, epi_r)
     moving = (
         wl,
         wr,
@@ -295,7 +285,7 @@ def epipolar_lines() -> Demo:
         marks 1-6 m and the epipoles) and ``state`` (``F``, ``epipoles``, ``line_right`` l',
         ``depth_points`` in px, ``point``, ``epipole_inside``). ``handlers`` holds the click.
     """
-    view = FigureView(figsize=(9.4, 4.1))
+    view = FigureView(figsize=(9.4, 4.3))
     segs = scenes.plane_outlines(stereo_scene())
     art = _epipolar_figure(view)
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads

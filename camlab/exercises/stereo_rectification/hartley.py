@@ -31,6 +31,10 @@ def _h2(
     dehomogenise=True,
     wrap=True,
     signed_f=True,
+    degrees=False,
+    g_is_f=False,
+    t_in_product=True,
+    transpose=False,
 ):
     """H2 = G R T with the slips the keywords name (the defaults: the right answer)."""
     e2 = np.asarray(e2, dtype=float)
@@ -41,13 +45,14 @@ def _h2(
     theta = np.arctan2(eT[1] * np.sign(eT[2]), eT[0] * np.sign(eT[2]))
     if wrap:
         theta = (theta + np.pi / 2) % np.pi - np.pi / 2
-    a = turn * theta
+    a = turn * (np.degrees(theta) if degrees else theta)
     R = np.array([[np.cos(a), -np.sin(a), 0], [np.sin(a), np.cos(a), 0], [0, 0, 1.0]])
     eR = R @ eT
     f = eR[0] / eR[2] if dehomogenise else eR[0]
     f = f if signed_f else abs(f)
-    G = np.array([[1, 0, 0], [0, 1, 0], [g_sign / f, 0, 1.0]])
-    return {"GRT": G @ R @ T, "TRG": T @ R @ G}[order]
+    G = np.array([[1, 0, 0], [0, 1, 0], [g_sign * f if g_is_f else g_sign / f, 0, 1.0]])
+    H = {"GRT": G @ R @ T if t_in_product else G @ R, "TRG": T @ R @ G}[order]
+    return H.T if transpose else H
 
 
 def hartley_H2(e2, image_size):
@@ -117,6 +122,25 @@ _SLIPS = [
         "your R turns the image upside down: of the two turns that put the epipole on the u axis "
         "(theta and theta + 180 deg) take the smaller, theta wrapped into [-90, 90) deg",
     ),
+    (
+        dict(degrees=True),
+        "your turn is in degrees: np.cos and np.sin take radians, so build R from theta as "
+        "np.arctan2 returns it (do not convert with np.degrees)",
+    ),
+    (
+        dict(g_is_f=True),
+        "G31 = -f: G must send (f, 0, 1) to (f, 0, 0), so its third row is (-1/f, 0, 1) (-f * f + 1 != 0)",
+    ),
+    (
+        dict(transpose=True),
+        "your H2 is transposed: with points as columns, H2 @ x must apply T, then R, then G; "
+        "check the rows of R (and T's translation in its last column, G's -1/f in its last row)",
+    ),
+    (
+        dict(t_in_product=False),
+        "you computed R and f from the translated epipole T e but left T out of the product: "
+        "H2 = G @ R @ T",
+    ),
 ]
 
 
@@ -152,6 +176,11 @@ def _hartley_diagnosis(args, got, expected, run=None) -> str:
             "integers it is ((w - 1)/2, (h - 1)/2)",
         ),
         (
+            dict(centre=(-(w - 1) / 2, -(h - 1) / 2)),
+            "your T translates by +c: T moves the centre c = ((w - 1)/2, (h - 1)/2) to the origin, "
+            "so its last column is (-c_u, -c_v, 1)",
+        ),
+        (
             dict(centre=((h - 1) / 2, (w - 1) / 2)),
             "you swapped width and height in the centre: "
             "image_size is (width, height), the centre ((w - 1)/2, (h - 1)/2)",
@@ -160,9 +189,15 @@ def _hartley_diagnosis(args, got, expected, run=None) -> str:
         if same_up_to_scale(g, _h2(e2, size, **keywords), rtol=1e-6):
             return hint
     e_out = g @ np.asarray(e2, float)
+    e_out = np.round(e_out / np.abs(e_out).max(), 4) + 0.0  # + 0.0: print -0 as 0
+    if abs(e_out[1]) < 1e-4 and abs(e_out[2]) < 1e-4:
+        return (
+            "your H2 does send the epipole to infinity along u, but it is not the G R T of the prompt: "
+            "T must move ((w - 1)/2, (h - 1)/2) to the origin, R turn by the smaller angle, G31 = -1/f"
+        )
     return (
-        f"your H2 sends the epipole to {np.round(e_out / np.abs(e_out).max(), 4)} (scaled), not to "
-        "(1, 0, 0): check T (centre to the origin), R (epipole onto the u axis) and G31 = -1/f"
+        f"your H2 sends the epipole to {e_out} (scaled), not to (1, 0, 0), the point at infinity along u: "
+        "check T (centre to the origin), R (epipole onto the u axis) and G31 = -1/f"
     )
 
 
@@ -178,6 +213,7 @@ register_exercise(
         up_to_scale=True,
         wrong_variants=tuple((lambda e, s, k=k: _h2(e, s, **k), hint[:20]) for k, hint in _SLIPS)
         + ((lambda e, s: _h2(e, s, centre=(s[0] / 2, s[1] / 2)), "(w/2, h/2)"),)
+        + ((lambda e, s: _h2(e, s, centre=(-(s[0] - 1) / 2, -(s[1] - 1) / 2)), "translates by +c"),)
         + ((lambda e, s: _h2(e, s, signed_f=False), "your f is a distance"),),
         teaching=hartley_H2,
         solution_note=(
