@@ -1984,3 +1984,16 @@ def test_a_long_list_answer_is_summarised_as_an_array_would_be():
     with pytest.raises(AssertionError) as info:
         check("demosaic_bilinear", lambda raw, p: sensor.demosaic_bilinear(raw, p).tolist())
     assert "<list of shape (6, 6, 3), values" in str(info.value) and len(str(info.value)) < 800
+
+
+def test_alias_frequency_checks_the_prompt_s_array_on_2d_and_0d_inputs():
+    from camlab.exercises._core import CheckFailed
+
+    right = lambda f: np.minimum(np.asarray(f) % 1, 1 - np.asarray(f) % 1)  # noqa: E731
+    assert check("alias_frequency", right).passed is True  # a 0-d f gives one number back
+    with pytest.raises(CheckFailed, match="wrap the values in np.array"):
+        check("alias_frequency", lambda f: right(f).tolist())
+    with pytest.raises(CheckFailed, match="f's shape"):
+        check("alias_frequency", lambda f: np.array([right(x) for x in np.ravel(f)]))
+    with pytest.raises(CheckFailed, match="your answer is integer"):
+        check("alias_frequency", lambda f: right(f).astype(int))

@@ -87,7 +87,7 @@ def type_problem(got: Any, expected: Any, ndarray_only: bool = False) -> str | N
                 f"numbers, such as [p, 1]?); {wanted}: {JOIN_HINT}"
             )
         return f"you returned a {kind}, which is not numbers; {wanted}"
-    if ndarray_only and not isinstance(got, np.ndarray):
+    if ndarray_only and isinstance(expected, np.ndarray) and not isinstance(got, np.ndarray):
         return f"you returned a {kind}; {wanted}: wrap the values in np.array(...)"
     return None
 

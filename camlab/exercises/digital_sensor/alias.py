@@ -14,6 +14,8 @@ def _alias_cases():
         (np.array([0.2, 0.55, 0.8, 1.3]),),  # below the limit, above it, and beyond 1
         (np.array([1.0, 1.3, 1.75, 2.2, 3.6]),),  # beyond 1 cycle per pixel
         (np.array([-0.2, -0.7, -1.4, 0.5]),),  # negative: a cosine at -f is the one at f
+        (np.array([[0.2, 0.8], [1.3, -0.7]]),),  # 2-D: a loop over np.ravel(f) loses the shape
+        (np.float64(0.8),),  # one number (0-d): the answer is one number too
     ]
 
 
@@ -91,6 +93,11 @@ def _alias_diagnosis(args, got, expected) -> str:
     if problem:
         return problem + ": return one frequency per entry of f, as a numpy array of f's shape"
     (f,) = args
+    if np.issubdtype(np.asarray(got).dtype, np.integer):
+        return (
+            f"your answer is integer ({np.asarray(got).dtype}): the frequencies are fractions of a cycle per "
+            "pixel, from 0 to 1/2; drop the astype(int) (or int(...), np.round) and keep floats"
+        )
     g = np.asarray(got, dtype=float)
     with np.errstate(invalid="ignore"):
         cause = first_mistake(_ALIAS_SLIPS, f, g, lambda a, b: np.allclose(a, b, atol=1e-9))
@@ -142,7 +149,12 @@ register_exercise(
             (lambda f: 2 * np.pi * sensor.alias_frequency(f), "radians per pixel"),
             (lambda f: np.abs(np.asarray(f) - np.floor(f)), "did not fold"),
             (lambda f: np.asarray(f)[:2], "one frequency per entry"),
+            (lambda f: sensor.alias_frequency(f).tolist(), "wrap the values in np.array"),
+            (lambda f: tuple(np.ravel(sensor.alias_frequency(f))), "wrap the values in np.array"),
+            (lambda f: sensor.alias_frequency(f).astype(int), "your answer is integer"),
+            (lambda f: np.array([min(x % 1, 1 - x % 1) for x in np.ravel(f)]), "f's shape"),
         ),
         teaching=alias_frequency,
+        ndarray_only=True,  # the prompt asks for a numpy array, as exercises 1 and 2 do
     )
 )

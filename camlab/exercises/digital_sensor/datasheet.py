@@ -190,11 +190,11 @@ _MISTAKES = (
     Mistake(
         "centre W / 2",
         lambda s: _near(s.g[0, 2], s.W / 2) or _near(s.g[1, 2], s.H / 2),
-        (
-            "half a pixel off: with pixel centres at integers, u runs from 0 to W - 1, so the centre is "
-            "(W - 1) / 2, not W / 2 (that is the centre in a pixel-corner convention), and not (W - 1) / 2 "
+        lambda s: (
+            "half a pixel off: with pixel centres at integers, {0} runs from 0 to {1} - 1, so {2} is "
+            "({1} - 1) / 2, not {1} / 2 (that is the centre in a pixel-corner convention), and not ({1} - 1) / 2 "
             "rounded to a whole pixel: keep the .5, the centre of an even number of pixels lies between two"
-        ),
+        ).format(*(("u", "W", "c_x") if _near(s.g[0, 2], s.W / 2) else ("v", "H", "c_y"))),
     ),
     Mistake(
         "c_x from the height",
@@ -497,6 +497,10 @@ register_exercise(
             (
                 lambda f, s, n: _datasheet_variant(f, s, n, cx=n[0] / 2, cy=n[1] / 2),
                 "half a pixel off",
+            ),
+            (
+                lambda f, s, n: _datasheet_variant(f, s, n, cy=n[1] / 2),
+                "c_y is (H - 1) / 2, not H / 2",
             ),
             (lambda f, s, n: _datasheet_variant(f, s, n, fx=f, fy=f), "not millimetres"),
             (
