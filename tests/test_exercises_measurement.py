@@ -164,3 +164,21 @@ def test_point_covariance_names_the_transposed_product():
         check("point_covariance", transposed)
     message = str(info.value)
     assert "J_A @ Sigma_A @ J_A.T" in message and "points as rows" not in message, message
+
+
+def test_height_above_plane_accepts_opencv_in_float32_and_names_the_slips(capsys):
+    import cv2
+
+    def opencv(K, R, t, a, b, length):  # float32 points: h about 0.1 um off, a relative 1e-5
+        H = K @ np.column_stack([R[:, 0], R[:, 1], t])
+        p = cv2.perspectiveTransform(np.float32([[a, b]]), np.linalg.inv(H))[0]
+        return abs((-R.T @ t)[2]) * (1 - length / np.linalg.norm(p[0] - p[1]))
+
+    assert check("height_above_plane", opencv).passed is True
+
+    from camlab.exercises.off_plane import height_above_plane
+
+    with pytest.raises(AssertionError) as info:  # 2 um off: no named slip, digits that differ
+        check("height_above_plane", lambda *args: height_above_plane(*args) + 2e-6)
+    message = str(info.value)
+    assert "+2.0 um off" in message, message
