@@ -324,7 +324,9 @@ def click_to_measure(ax, length_text, area_text) -> SimpleNamespace:
         ``points`` (the clicks so far), ``line`` (the drawn outline), ``click(u, v, button)``
         (what a mouse click does; tests call it) and ``connection`` (the canvas callback id).
     """
-    (line,) = ax.plot([], [], "-o", color=palette.ORANGE, lw=2, ms=5)
+    (line,) = ax.plot(
+        [], [], "-o", color="white", lw=2, ms=5, path_effects=palette.halo(2, "black")
+    )  # white, black-edged: what you measure on a photo (the lesson's colour table)
     state = SimpleNamespace(points=[], closed=False, line=line)
 
     def show(text: str) -> None:
