@@ -164,3 +164,54 @@ def test_point_covariance_names_the_transposed_product():
         check("point_covariance", transposed)
     message = str(info.value)
     assert "J_A @ Sigma_A @ J_A.T" in message and "points as rows" not in message, message
+
+
+def test_height_above_plane_accepts_opencv_in_float32_and_names_the_slips(capsys):
+    import cv2
+
+    def opencv(K, R, t, a, b, length):  # float32 points: h about 0.1 um off, a relative 1e-5
+        H = K @ np.column_stack([R[:, 0], R[:, 1], t])
+        p = cv2.perspectiveTransform(np.float32([[a, b]]), np.linalg.inv(H))[0]
+        return abs((-R.T @ t)[2]) * (1 - length / np.linalg.norm(p[0] - p[1]))
+
+    assert check("height_above_plane", opencv).passed is True
+
+    from camlab.exercises.off_plane import height_above_plane
+
+    with pytest.raises(AssertionError) as info:  # 2 um off: no named slip, digits that differ
+        check("height_above_plane", lambda *args: height_above_plane(*args) + 2e-6)
+    message = str(info.value)
+    assert "+2.0 um off" in message, message
+
+
+def test_max_depth_accepts_a_coarse_bisection_and_explains_a_near_miss(capsys):
+    def bisect(f, B, sigma_d, max_error, steps=40):  # 1e4 / 2^40: about 0.01 um
+        lo, hi = 0.0, 1e4
+        for _ in range(steps):
+            mid = (lo + hi) / 2
+            lo, hi = (mid, hi) if mid**2 * sigma_d / (f * B) < max_error else (lo, mid)
+        return lo
+
+    assert check("max_depth", bisect).passed is True
+    with pytest.raises(AssertionError) as info:  # 2e-5 relative: nearly right, digits that differ
+        check("max_depth", lambda *args: bisect(*args) * (1 + 2e-5))
+    message = str(info.value)
+    assert "nearly right" in message and "+2.0e-05 relative" in message, message
+
+
+def test_pose_covariance_says_nearly_right_for_a_tiny_scale():
+    from camlab.exercises.pose_uncertainty import pose_covariance
+
+    with pytest.raises(AssertionError) as info:
+        check("pose_covariance", lambda J, r: 1.0001 * pose_covariance(J, r))
+    message = str(info.value)
+    assert "nearly right" in message and "1 times" not in message, message
+
+
+def test_point_covariance_in_mm2_prints_the_expected_in_significant_digits():
+    from camlab.exercises.point_covariance import point_covariance
+
+    with pytest.raises(AssertionError) as info:
+        check("point_covariance", lambda *args: 1e6 * point_covariance(*args))
+    message = str(info.value)
+    assert "0.0000" not in message.split("expected", 1)[1], message

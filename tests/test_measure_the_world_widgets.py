@@ -35,3 +35,19 @@ def test_clicks_measure_a_length_then_an_area_and_start_again():
     clicks.click(2, 2, button=3)  # a right-click with fewer than three points clears
     assert clicks.points == []
     plt.close(fig)
+
+
+def test_ray_angle_follows_the_two_laws():
+    from camlab.widgets.measure_the_world import ray_angle
+
+    demo = ray_angle()
+    for alpha, pick in ((40.0, 0.5), (10.0, 0.5), (90.0, 1.0)):
+        demo.set(alpha=alpha, pick=pick)
+        half = np.radians(alpha) / 2
+        c = 0.332 * pick  # 0.166 mm at 0.5 px (section 3)
+        assert abs(demo.state["depth_mm"] - c / np.sin(half)) < 1e-9
+        assert abs(demo.state["across_mm"] - c / np.cos(half)) < 1e-9
+    demo.set(alpha=5.0, pick=1.0)
+    assert (
+        demo.state["in_frame"] is False
+    )  # nearly parallel rays: the readout says the ellipse leaves the frame

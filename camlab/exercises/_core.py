@@ -225,7 +225,7 @@ def _fmt(value: Any) -> str:
 def _decimals(*arrays: np.ndarray) -> int | None:
     """The decimals that print every entry of ``arrays`` exactly (0 .. 6), 4 if none do, None if not real arrays.
 
-    None too if every entry is tiny (below 1e-3): :func:`_fmt` then prints 3 significant digits, so a
+    None too if every entry of one array is tiny (below 1e-3): :func:`_fmt` then prints 3 significant digits, so a
     covariance of 1e-7 m^2 never shows as 0.0000. A wrong answer's got and expected lines use the same number, so 8.5 is not printed beside 4.25 as
     [8.5] against [4.25] with another precision, nor 0.00425 rounded to 0.0043.
     """
@@ -241,9 +241,9 @@ def _decimals(*arrays: np.ndarray) -> int | None:
     for d in range(7):
         if np.allclose(values, np.round(values, d), rtol=1e-12, atol=0):
             return d
-    if (
-        0 < np.abs(values).max() < 1e-3
-    ):  # tiny, as a covariance in m^2: 3 significant digits, never all 0.0000
+    if any(
+        0 < np.abs(a).max() < 1e-3 for a in arrays
+    ):  # tiny, as a covariance in m^2 (even beside a wrong answer 1e6 larger, in mm^2): 3 significant digits
         return None
     return 4
 

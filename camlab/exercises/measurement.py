@@ -274,6 +274,11 @@ def _reach_cases():
     return [(994.978, 0.193, 0.3, 0.01), (1500.0, 0.012, 0.5, 0.05), (1200.0, 0.54, 0.25, 0.1)]
 
 
+REACH_RTOL = 1e-6
+"""Exercise 5's relative tolerance: 2.5 um on 2.5 m passes a bisection or float32 answer; the nearest
+slip (sqrt(2) sigma_d) is 19 % off."""
+
+
 def _reach_context(f, B, s, e):
     right = float(np.sqrt(e * f * B / s))
     return SimpleNamespace(
@@ -295,6 +300,9 @@ def _reach_context(f, B, s, e):
         no_sigma=float(np.sqrt(e * f * B)) if not np.isclose(s, 1) else None,
         two_sigma=float(np.sqrt(e * f * B / (2 * s))),
         disparity_depth=f * B / s,
+        sigma_times=float(np.sqrt(e * f * B * s)),
+        no_B=float(np.sqrt(e * f / s)),
+        root2_sigma=float(np.sqrt(e * f * B / (np.sqrt(2) * s))),
     )
 
 
@@ -402,6 +410,25 @@ _REACH_MISTAKES = (
         lambda c: c.mm,
         "your depth is 1000 times too big: with B and max_error in metres, Z comes out in metres.",
     ),
+    Mistake(
+        "sigma_d multiplied",
+        lambda c: c.sigma_times,
+        "you multiplied by sigma_d where it divides: more disparity noise lets you see LESS far. From "
+        "Z^2 sigma_d / (f B) = max_error, Z^2 = max_error f B / sigma_d.",
+    ),
+    Mistake(
+        "no baseline",
+        lambda c: c.no_B,
+        "you left out the baseline B: the disparity d = f B / Z grows with B, so sigma_Z = Z^2 sigma_d / "
+        "(f B) and Z_max = sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "sqrt(2) sigma_d",
+        lambda c: c.root2_sigma,
+        "you divided by sqrt(2) sigma_d: sigma_d is given already as the DISPARITY's noise (section 3's "
+        "sqrt(2) sigma_u is how it follows from one pixel's noise); use it as it is, Z^2 = max_error f B / "
+        "sigma_d.",
+    ),
 )
 
 
@@ -412,11 +439,20 @@ def _reach_diagnosis(args, got, expected) -> str:
         _REACH_MISTAKES,
         _reach_context(*args),
         float(got),
-        lambda a, b: np.isclose(a, b, rtol=1e-6, atol=0),
+        lambda a, b: np.isclose(a, b, rtol=REACH_RTOL, atol=0),
     )
-    return hint or (
+    if hint:
+        return hint
+    off = float(got) / expected - 1
+    if abs(off) < 1e-4:
+        return (
+            f"nearly right: {float(got):.10f} m against {expected:.10f} m ({off:+.1e} relative, the "
+            f"check allows {REACH_RTOL:g}): solve exactly, Z = sqrt(max_error f B / sigma_d), or run "
+            "your solver to a tighter tolerance."
+        )
+    return (
         f"for f = {args[0]:g} px, B = {args[1]:g} m, sigma_d = {args[2]:g} px and a tolerated error of "
-        f"{args[3]:g} m the answer is {expected:.7g} m, not {float(got):.7g}: solve "
+        f"{args[3]:g} m the answer is {expected:.7g} m, not {float(got):.7g} ({off:+.2%}): solve "
         "Z^2 sigma_d / (f B) = max_error for Z."
     )
 
@@ -453,7 +489,7 @@ register_exercise(
         lesson="12",
         reference=max_depth,
         cases=_reach_cases,
-        compare=same_number(rtol=1e-9),
+        compare=same_number(rtol=REACH_RTOL),
         diagnose=_reach_diagnosis,
         wrong_variants=(
             (_reach_variant("no root"), "forgot the square root"),
@@ -474,6 +510,9 @@ register_exercise(
             (_reach_variant("negative root"), "negative root"),
             (_reach_variant("half"), "half the answer"),
             (_reach_variant("disparity equals sigma"), "disparity itself"),
+            (_reach_variant("sigma_d multiplied"), "multiplied by sigma_d"),
+            (_reach_variant("no baseline"), "left out the baseline"),
+            (_reach_variant("sqrt(2) sigma_d"), "sqrt(2) sigma_d"),
         ),
         teaching=max_depth,
         solution_note=(

@@ -22,8 +22,14 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from ._answers import Tolerance
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
-from ._numbers import is_number, not_one_number, same_number
+from ._numbers import SameNumber, is_number, not_one_number
+
+ATOL_M = 1e-6
+"""How close h must be, metres (1 um), absolute: h = Z (1 - L / L_read) is a small difference of two
+near-equal numbers, so a relative tolerance on h would reject float32's rounding (0.1 um here,
+cv2.perspectiveTransform); the nearest slip below (a half-pixel shift) is 166 um off."""
 
 _K = np.array([[532.8, 0.0, 341.8], [0.0, 533.0, 234.1], [0.0, 0.0, 1.0]])
 
@@ -90,34 +96,44 @@ def height_above_plane(K, R, t, a, b, length):
 
 
 def _context(K, R, t, a, b, length):
-    H = K @ np.column_stack([R[:, 0], R[:, 1], t])
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
 
-    def read(H_used, divide=True):
+    def H_of(r1, r2):
+        return K @ np.column_stack([r1, r2, t])
+
+    def read(H_used, a=a, b=b, divide=True):
         p = np.linalg.solve(H_used, np.array([[*a, 1.0], [*b, 1.0]]).T)
         p = p[:2] / p[2] if divide else p[:2]
         return np.linalg.norm(p[:, 1] - p[:, 0])
 
+    H = H_of(R[:, 0], R[:, 1])
     L_read, Z = read(H), abs((-R.T @ t)[2])
+    Z_rt = abs((-R @ t)[2])  # C = -R t: R where R^T belongs
+
+    def h(L_r=L_read, Z=Z):
+        return Z * (1 - length / L_r)
+
+    forward = [(H @ [*p, 1.0])[:2] / (H @ [*p, 1.0])[2] for p in (a, b)]
     return SimpleNamespace(
-        right=Z * (1 - length / L_read),
+        right=h(),
         first_order=Z * (L_read / length - 1),
-        t_z=t[2] * (1 - length / L_read),
-        t_norm=np.linalg.norm(t) * (1 - length / L_read),
-        sign=-Z * (1 - length / L_read),
-        mm=1000 * Z * (1 - length / L_read),
+        t_z=h(Z=t[2]),
+        t_norm=h(Z=np.linalg.norm(t)),
+        sign=-h(),
+        mm=1000 * h(),
         inverted=Z * (1 - L_read / length),
         distance=Z * length / L_read,
-        no_K=Z * (1 - length / read(np.column_stack([R[:, 0], R[:, 1], t]))),
-        no_w=Z * (1 - length / read(H, divide=False)),
-        H_not_inverted=Z
-        * (
-            1
-            - length
-            / np.linalg.norm(
-                (H @ [*b, 1.0])[:2] / (H @ [*b, 1.0])[2] - (H @ [*a, 1.0])[:2] / (H @ [*a, 1.0])[2]
-            )
-        ),
+        no_K=h(read(np.column_stack([R[:, 0], R[:, 1], t]))),
+        no_w=h(read(H, divide=False)),
+        H_not_inverted=h(np.linalg.norm(forward[1] - forward[0])),
         length_error=L_read - length,
+        half=h(read(H, a + 0.5, b + 0.5)),
+        minus_half=h(read(H, a - 0.5, b - 0.5)),
+        swapped=h(read(H, a[::-1], b[::-1])),
+        transposed=h(read(H.T)),  # x @ H^-1 with x a row: H^-T
+        C_R=h(Z=Z_rt),
+        rows=h(read(H_of(R[0], R[1]))),
+        R_T=h(read(H_of(R[0], R[1])), Z_rt),
     )
 
 
@@ -144,8 +160,9 @@ _MISTAKES = (
     Mistake(
         "sign",
         lambda c: c.sign,
-        "your height has the wrong sign: a segment that reads LONG stands toward the camera, and the "
-        "prompt counts that as positive (the board's z points away from the camera, so h is -z).",
+        "your height has the wrong sign. Did you drop the abs on C_z? The camera is on the board's -z "
+        "side (the board's z points away from it), so C_z < 0 and Z = |C_z|. Else: a segment that reads "
+        "LONG stands toward the camera, and the prompt counts that as positive.",
     ),
     Mistake(
         "millimetres",
@@ -188,6 +205,48 @@ _MISTAKES = (
         "you returned L_read - L, how much too long the reading is: the question is the height h at which "
         "the segment stands, h = Z (1 - L / L_read).",
     ),
+    Mistake(
+        "half pixel",
+        lambda c: c.half,
+        "you shifted the pixels by half a pixel: camlab's pixel (u, v) is already the pixel's centre "
+        "(origin at the centre of the top-left pixel), so map (u, v, 1) as it is.",
+    ),
+    Mistake(
+        "minus half pixel",
+        lambda c: c.minus_half,
+        "you shifted the pixels by -0.5: camlab's pixel (u, v) is already the pixel's centre, so there "
+        "is no corner-to-centre shift; map (u, v, 1) as it is.",
+    ),
+    Mistake(
+        "u and v swapped",
+        lambda c: c.swapped,
+        "you swapped u and v (row, column order, as an array index reads them): a pixel here is (u, v) = "
+        "(column, row), the order H expects; map (a[0], a[1], 1).",
+    ),
+    Mistake(
+        "transposed",
+        lambda c: c.transposed,
+        "you applied the transpose H^-T: x @ H^-1 with x a row (or inv(H).T @ x) is the rule for LINES. "
+        "A point goes back by H^-1 itself: np.linalg.solve(H, x) for a column, x @ inv(H).T for rows.",
+    ),
+    Mistake(
+        "C = -R t",
+        lambda c: c.C_R,
+        "you took C = -R t: the camera centre in the board frame is C = -R^T t (from 0 = R C + t), so "
+        "Z = |(-R.T @ t)[2]|.",
+    ),
+    Mistake(
+        "rows of R",
+        lambda c: c.rows,
+        "you built H from the ROWS of R: r1, r2 are its first two COLUMNS, R[:, 0] and R[:, 1] (the board's "
+        "x and y axes in the camera frame), so H = K [R[:, 0] R[:, 1] t].",
+    ),
+    Mistake(
+        "R.T for R",
+        lambda c: c.R_T,
+        "you used R.T where R belongs (both in H and in C): R is cam_from_board, X_cam = R X + t, so "
+        "H = K [R[:, 0] R[:, 1] t] and C = -R.T @ t.",
+    ),
 )
 
 
@@ -195,10 +254,12 @@ def _diagnosis(args, got, expected) -> str:
     if not is_number(got):
         return not_one_number(got, "the height in metres")
     hint = first_mistake(
-        _MISTAKES, _context(*args), float(got), lambda a, b: np.isclose(a, b, rtol=1e-6, atol=0)
+        _MISTAKES, _context(*args), float(got), lambda a, b: np.isclose(a, b, rtol=0, atol=ATOL_M)
     )
+    off = 1e6 * (float(got) - expected)
     return hint or (
-        f"the answer is {1000 * expected:.3f} mm, not {1000 * float(got):.3f} mm: read the segment on "
+        f"the answer is {1000 * expected:.4f} mm, not {1000 * float(got):.4f} mm ({off:+.1f} um off, "
+        f"tolerance {1e6 * ATOL_M:.0f} um): read the segment on "
         "the plane (H^-1), take Z = |C_z| with C = -R^T t, and solve Z / (Z - h) = L_read / L for h."
     )
 
@@ -213,13 +274,13 @@ register_exercise(
         lesson="12",
         reference=height_above_plane,
         cases=_cases,
-        compare=same_number(rtol=1e-6),
+        compare=SameNumber(Tolerance(0.0, ATOL_M)),
         diagnose=_diagnosis,
         wrong_variants=(
             (_variant("first order"), "first-order law"),
             (_variant("t_z for Z"), "optical axis"),
             (_variant("|t| for Z"), "board's origin"),
-            (_variant("sign"), "wrong sign"),
+            (_variant("sign"), "abs on C_z"),
             (_variant("millimetres"), "1000 times"),
             (_variant("ratio inverted"), "L_read / L where"),
             (_variant("Z - h"), "distance from the camera"),
@@ -227,6 +288,13 @@ register_exercise(
             (_variant("no division by w"), "division by w"),
             (_variant("H not inverted"), "with H itself"),
             (_variant("length error"), "how much too long"),
+            (_variant("half pixel"), "half a pixel"),
+            (_variant("minus half pixel"), "-0.5"),
+            (_variant("u and v swapped"), "swapped u and v"),
+            (_variant("transposed"), "rule for LINES"),
+            (_variant("C = -R t"), "C = -R t"),
+            (_variant("rows of R"), "ROWS of R"),
+            (_variant("R.T for R"), "R.T where R belongs"),
         ),
         teaching=height_above_plane,
     )

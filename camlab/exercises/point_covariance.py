@@ -114,6 +114,7 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         + sigma_u**2 * u,
         picks_per_end=a + b + sigma_u**2 * u / 2,
         mm=1e6 * (a + b + sigma_u**2 * u),
+        mm_linear=1e3 * (a + b + sigma_u**2 * u),
         swapped=J_A @ Sigma_B @ J_A.T + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
         identity=a + b + sigma_u**2 * np.eye(3),
         picks_twice=a + b + 2 * sigma_u**2 * u,
@@ -230,6 +231,12 @@ _MISTAKES = (
         "term is sigma_u**2 * J_u @ J_u.T.",
     ),
     Mistake(
+        "millimetres, not squared",
+        lambda c: c.mm_linear,
+        "your covariance is 1000 times too big: a conversion to mm multiplied it by 1000, but a covariance "
+        "is in squared units (mm^2 would be 10^6). Return it in metres squared, as the Jacobians give it.",
+    ),
+    Mistake(
         "Sigma_A for both",
         lambda c: c.sigma_A_twice,
         "photo B's term uses Sigma_A: each pose has its own covariance, solved from its own photo's "
@@ -261,6 +268,17 @@ def _diagnosis(args, got, expected) -> str:
         return (
             "you returned 3 numbers, the variances alone (the diagonal): return the whole (3, 3) "
             "covariance, whose off-diagonal terms carry the correlations (the ellipsoid's tilt)."
+        )
+    if (
+        g is not None
+        and g.shape == (3, 3)
+        and g.dtype.kind in "fiu"
+        and np.allclose(np.abs(g.astype(float)) ** 2, np.abs(expected), rtol=1e-4, atol=0)
+    ):
+        return (
+            "you took an elementwise square root (a 'sigma matrix', np.sqrt of each entry): the square root "
+            "of a covariance is not taken entry by entry (sigmas are the roots of its DIAGONAL, "
+            "np.sqrt(np.diag(Sigma_X))). Return Sigma_X itself, the sum of the three J Sigma J^T terms."
         )
     hint = None
     if g is not None and g.shape == np.shape(expected) and g.dtype.kind in "fiu":
@@ -330,6 +348,11 @@ register_exercise(
             (_variant("picking diagonal"), "only the diagonal of the picking"),
             (_variant("sigma_u halved"), "sigma_u / 2"),
             (_variant("Sigma_A for both"), "photo B's term uses Sigma_A"),
+            (_variant("millimetres, not squared"), "squared units"),
+            (
+                lambda *args: np.sqrt(np.abs(point_covariance(*args))),
+                "elementwise square root",
+            ),
             (
                 (
                     lambda J_A, S_A, J_B, S_B, J_u, s: (

@@ -231,8 +231,14 @@ def _scale_hint(g, expected) -> str | None:
     """A covariance that is a constant multiple of the answer: (J^T J)^-1 is right, sigma^2 is not."""
     k = float(np.sum(g * expected) / np.sum(expected * expected))
     if np.all(np.isfinite(g)) and np.allclose(g, k * expected, rtol=1e-6, atol=0):
+        if abs(k - 1) < 1e-3:
+            return (
+                f"nearly right: your covariance is (1 {k - 1:+.1e}) times the answer (the check allows 1e-7 "
+                "relative). (J^T J)^-1 is right; compute sigma^2 = np.sum(r**2) / (len(r) - 6) in float64, "
+                "without rounding."
+            )
         return (
-            f"your covariance is {k:.4g} times the answer: the matrix (J^T J)^-1 is right, its factor sigma^2 "
+            f"your covariance is {k:.6g} times the answer: the matrix (J^T J)^-1 is right, its factor sigma^2 "
             "is not; sigma^2 = np.sum(r**2) / (len(r) - 6), the residuals squared, summed, divided by 2N - 6."
         )
     return None

@@ -324,7 +324,9 @@ def click_to_measure(ax, length_text, area_text) -> SimpleNamespace:
         ``points`` (the clicks so far), ``line`` (the drawn outline), ``click(u, v, button)``
         (what a mouse click does; tests call it) and ``connection`` (the canvas callback id).
     """
-    (line,) = ax.plot([], [], "-o", color=palette.ORANGE, lw=2, ms=5)
+    (line,) = ax.plot(
+        [], [], "-o", color="white", lw=2, ms=5, path_effects=palette.halo(2, "black")
+    )  # white, black-edged: what you measure on a photo (the lesson's colour table)
     state = SimpleNamespace(points=[], closed=False, line=line)
 
     def show(text: str) -> None:
@@ -358,3 +360,88 @@ def click_to_measure(ax, length_text, area_text) -> SimpleNamespace:
     state.click = click
     state.connection = ax.figure.canvas.mpl_connect("button_press_event", on_press)
     return state
+
+
+RAY_MM_PER_PX = 0.332
+"""Section 3's constant: sigma depth of the triangulated corner = RAY_MM_PER_PX * pick / sin(alpha/2),
+0.166 mm / sin(alpha/2) at 0.5 px picking (measured there, asserted in the lesson's cell)."""
+
+
+@register(lesson="12", sweep={"alpha": [5.0, 40.0, 120.0], "pick": [0.1, 1.0]})
+def ray_angle() -> Demo:
+    r"""Two rays crossing at a corner: the 95 % ellipse of the triangulated point as the angle closes.
+
+    Each ray, moved sideways by its own noise :math:`e` (one sigma), moves the crossing by
+    :math:`x = (e_1 + e_2) / (2\cos(\alpha/2))` across and :math:`y = (e_2 - e_1) / (2\sin(\alpha/2))`
+    along the bisector (depth), so :math:`\sigma_\text{depth} = e / (\sqrt2 \sin(\alpha/2))` and
+    :math:`\sigma_\text{across} = e / (\sqrt2 \cos(\alpha/2))`; :math:`e/\sqrt2` is section 3's
+    0.166 mm at 0.5 px picking (:data:`RAY_MM_PER_PX` per pixel of picking).
+
+    Returns
+    -------
+    Demo
+        Controls ``alpha`` (the angle between the rays, degrees) and ``pick`` (picking sigma, px);
+        ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma) and ``in_frame``.
+    """
+    view = FigureView(figsize=(6.4, 4.6))
+    ax = view.fig.subplots()
+    ax.set(xlim=(-4, 4), ylim=(-6, 6), aspect="equal")
+    ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
+    ax.set_ylabel("depth, along the bisector (mm)", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.grid(alpha=0.3)
+    rays = [ax.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
+    bands = [ax.plot([], [], ":", color=palette.ORANGE, lw=1)[0] for _ in range(4)]
+    (ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
+    (axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
+    ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
+    ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
+    ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
+    view.fig.legend(loc="outside lower center", ncols=3, fontsize=7)
+    ax.set_title(" ", fontsize=9)
+    view.animate(*rays, *bands, ellipse, axes_, ax.title)
+    readout = W.HTML()
+    ring = np.linspace(0, 2 * np.pi, 181)
+    k95 = np.sqrt(5.991)  # chi^2 with 2 degrees of freedom, 95 %
+
+    def update(v, state):
+        half = np.radians(v["alpha"]) / 2
+        e = np.sqrt(2) * RAY_MM_PER_PX * v["pick"]  # one ray's sideways sigma, mm
+        depth, across = e / (np.sqrt(2) * np.sin(half)), e / (np.sqrt(2) * np.cos(half))
+        for sign, ray, pair in ((-1, rays[0], bands[:2]), (1, rays[1], bands[2:])):
+            d = np.array([sign * np.sin(half), np.cos(half)])  # toward its camera, above the corner
+            n = np.array([d[1], -d[0]])
+            ray.set_data(*np.outer([-20, 20], d).T)
+            for s, band in zip((-1, 1), pair, strict=True):
+                band.set_data(*(np.outer([-20, 20], d) + s * e * n).T)
+        ellipse.set_data(k95 * across * np.cos(ring), k95 * depth * np.sin(ring))
+        axes_.set_data(
+            [-k95 * across, k95 * across, np.nan, 0, 0], [0, 0, np.nan, -k95 * depth, k95 * depth]
+        )
+        ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px")
+        in_frame = bool(k95 * depth <= 6 and k95 * across <= 4)
+        state.update(depth_mm=depth, across_mm=across, in_frame=in_frame)
+        c = RAY_MM_PER_PX * v["pick"]
+        readout.value = monospace(
+            f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (95 %: ± {k95 * depth:.2f} mm)\n"
+            f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (95 %: ± {k95 * across:.2f} mm)\n"
+            f"depth / across = cot(α/2) = {depth / across:.2f}"
+            + (
+                ""
+                if in_frame
+                else "\nthe ellipse runs past the frame: the rays are nearly parallel"
+            )
+        )
+
+    controls = {
+        "alpha": slider(40.0, 5.0, 120.0, 1.0, "angle α (deg)"),
+        "pick": slider(0.5, 0.1, 1.0, 0.05, "picking σ (px)"),
+    }
+    return build_demo(
+        "ray_angle",
+        controls,
+        view,
+        update,
+        title="Two rays: the ellipse as the angle closes",
+        extra=[readout],
+    )
