@@ -224,7 +224,7 @@ register_exercise(
     Exercise(
         name="plane_homography",
         lesson="07",
-        reference=lambda K, R, t, n, d: hg.plane_homography(K, R, t, n, d),
+        reference=hg.plane_homography,
         cases=_plane_cases,
         compare=lambda got, expected: same_up_to_scale(got, expected, rtol=1e-6),
         up_to_scale=True,
