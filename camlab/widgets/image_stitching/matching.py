@@ -276,9 +276,8 @@ def _registration_texts(r, n: int, wrong: int, err: float) -> tuple[str, str]:
     """
     need = max(15, int(np.floor(8 + 0.3 * n)) + 1)  # register_pair's acceptance test
     verdict = (
-        f"{int(r.inliers.sum())} of {n} matches are inliers "
-        f"({wrong} of them wrong)\n"
-        f"worst corner vs the true H: {err:.2f} px\n"
+        f"{int(r.inliers.sum())} of {n} matches are inliers, {wrong} of them\n"
+        f"> 2 px off the true H; worst corner {err:.2f} px off\n"
         + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})")
         + (
             "\nthe threshold is below the features' noise"
@@ -288,7 +287,7 @@ def _registration_texts(r, n: int, wrong: int, err: float) -> tuple[str, str]:
     )
     readout = monospace(
         f"matches: {n}\ninliers: {int(r.inliers.sum())} "
-        f"({wrong} of them wrong)\n"
+        f"({wrong} of them > 2 px off the true H)\n"
         f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
         + ("verdict: accepted" if r.accepted else f"verdict: rejected, {r.reason}")
     )
