@@ -88,6 +88,10 @@ def test_ransac_histogram_green_holds_every_inlier():
     d.set(threshold=0.02)
     inl_bars, out_bars = d.view._animated[0].figure.axes[1].containers
     assert inl_bars[0].get_height() > 0  # the hatched "< 0.02 px" bar shows its inliers in green
+    # ... and only them: it lies wholly left of the threshold, so no rejected match can be in it
+    assert out_bars[0].get_height() == 0
+    assert inl_bars[0].get_x() + inl_bars[0].get_width() <= 0.02 + 1e-12
+    assert all(b.get_x() >= 0.02 - 1e-12 for b in inl_bars[1:])
     # a straddling bin shows both kinds: the grey part starts where the green ends
     assert all(
         abs(o.get_y() - i.get_height()) < 1e-12 for i, o in zip(inl_bars, out_bars, strict=True)

@@ -489,7 +489,8 @@ def _pair_shape_hint(got, expected) -> str | None:
     if np.isclose(a, f_to, rtol=1e-5) and np.isclose(b, f_from, rtol=1e-5):
         return (
             "the two are swapped: R's rows give the focal of the image H maps FROM (f_from), its columns the "
-            "focal of the image it maps TO (f_to); return (f_from, f_to)."
+            "focal of the image it maps TO (f_to); return (f_from, f_to). If your formulas are right, you may have "
+            "used H^-1 (it maps to -> from, so the rows and columns trade roles): use H as given."
         )
     if np.isclose(a, b, rtol=1e-9) and f_from != f_to:
         return (
@@ -642,6 +643,10 @@ register_exercise(
                 "idth and height swapped",  # W when it starts the sentence
             ),
             (lambda H, shape: focal_from_rotation_homography(H, shape)[::-1], "swapped"),
+            (
+                lambda H, shape: focal_from_rotation_homography(np.linalg.inv(H), shape),
+                "used H^-1",
+            ),
             (_one_focal, "you returned one number"),
             (lambda H, shape: (_one_focal(H, shape),) * 2, "same number twice"),
             (_slipped_student("half"), "half-pixel slip"),

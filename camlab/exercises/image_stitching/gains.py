@@ -139,6 +139,21 @@ def _solve(
             return np.full(len(N), np.nan)
 
 
+def _diagonal_overwritten(N, M, *, in_b=True):
+    """A vectorised slip: N's diagonal kept, A's diagonal set (not added to) over the coupling term.
+
+    ``A = -2 N I I^T / sigma_N^2`` then ``fill_diagonal(A, sum_j N_ij (2 I_ij^2 / sigma_N^2 + 1 / sigma_g^2))``
+    with j = i in the sum: the j = i data term 2 N_ii I_ii^2 / sigma_N^2 stays on the diagonal (in a loop it
+    cancels against the coupling term), and N_ii is in b too unless ``in_b`` is False.
+    """
+    N = np.array(N, dtype=float)
+    A = -2 * N * M * M.T / SIGMA_N**2
+    np.fill_diagonal(A, (N * (2 * M**2 / SIGMA_N**2 + 1 / SIGMA_G**2)).sum(axis=1))
+    off = N - np.diag(np.diag(N))
+    with np.errstate(all="ignore"):
+        return np.linalg.solve(A, (N if in_b else off).sum(axis=1) / SIGMA_G**2)
+
+
 def _context(args, expected):
     N, M = (np.asarray(a, dtype=float) for a in args)
     return SimpleNamespace(N=N, M=M, expected=expected)
@@ -267,6 +282,17 @@ _GAIN_SLIPS = (
         "summing over j.",
     ),
     Mistake(
+        "diagonal kept, A's diagonal overwritten",
+        lambda c: [
+            _diagonal_overwritten(c.N, c.M),
+            _diagonal_overwritten(c.N, c.M, in_b=False),
+        ],
+        "N[i, i] is image i's own size, not an overlap, and you kept it in your sums: with j = i, A[i, i] "
+        "gains 2 N_ii I_ii^2 / sigma_N^2 (setting A's diagonal after the coupling term, e.g. with fill_diagonal, "
+        "keeps it; in a loop it would cancel against -2 N_ii I_ii I_ii / sigma_N^2), which is huge against the "
+        "overlaps' terms and drags every gain towards 0. Zero N's diagonal (on a copy) before summing over j.",
+    ),
+    Mistake(
         "normalised",
         lambda c: [c.expected / c.expected[k] for k in range(len(c.expected))],
         "you divided the gains by one image's gain; the prompt asks for the solution g itself (stitch divides "
@@ -386,6 +412,14 @@ register_exercise(
             (_variant("sigma not squared"), "not sigma_N (10)"),
             (_variant("sigma in 0-1 units"), "grey levels 0-255"),
             (_variant("diagonal kept"), "own size, not an overlap"),
+            (
+                lambda N, M: _diagonal_overwritten(N, np.asarray(M, float)),
+                "kept it in your sums",
+            ),
+            (
+                lambda N, M: _diagonal_overwritten(N, np.asarray(M, float), in_b=False),
+                "kept it in your sums",
+            ),
             (_variant("sigma_g = 0.1"), "Brown & Lowe's value"),
             (_variant("means in 0-1"), "divided the means by 255"),
             (_variant("N_ii in b"), "kept it in b_i"),

@@ -373,7 +373,7 @@ def blending_seams() -> Demo:
         out, rgba = cache[key]
         im.set_data(rgba)
         title.set_text(
-            "two views whose exposures differ by 30%, "
+            f"{_blend_name(v['method'], int(v['levels']))}: two views whose exposures differ by 30%, "
             + (f"gains {gains[0]:.3f}, {gains[1]:.3f} applied" if v["gains"] else "before gains")
         )
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
@@ -671,16 +671,24 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
     return SimpleNamespace(im=im, title=title, legend=legend)
 
 
+def _blend_name(method: str, levels: int = 5) -> str:
+    """The blend ``method`` as a panel title names it, with the pyramid ``levels`` of multi-band."""
+    if method == "multiband":
+        return f"multi-band, {levels} pyramid level{'s' if levels != 1 else ''}"
+    return {"feather": "feathering"}.get(method, method)
+
+
 def _parallax_texts(
-    b: float, n: int, k: int, rms: float, diff: float, edges: bool
+    b: float, n: int, k: int, rms: float, diff: float, edges: bool, method: str = "multiband"
 ) -> tuple[str, str]:
     """The title and the readout of :func:`parallax_ghosting` for a move of ``b`` m.
 
     ``k`` of ``n`` matches inliers, their RMS ``rms`` px, the mean misalignment ``diff`` grey
-    levels, and what the edges mean when they are shown.
+    levels, what the edges mean when they are shown, and the blend ``method`` (multi-band with
+    :func:`camlab.stitching.blend`'s default 5 levels).
     """
     title = (
-        f"camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography, "
+        f"{_blend_name(method)}, camera moved {100 * b:.0f} cm: {k} of {n} matches fit one homography\n"
         f"mean |view 0 - view 1| on the overlap {diff:.1f} grey levels"
     )
     readout = monospace(
@@ -762,7 +770,9 @@ def parallax_ghosting() -> Demo:
         art.legend.set_visible(bool(v["edges"]))
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * p.misalignment
-        title, readout.value = _parallax_texts(b, n, k, reg.residual_rms, diff, bool(v["edges"]))
+        title, readout.value = _parallax_texts(
+            b, n, k, reg.residual_rms, diff, bool(v["edges"]), v["method"]
+        )
         art.title.set_text(title)
         state.update(
             baseline=b,

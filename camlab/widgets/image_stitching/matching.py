@@ -123,9 +123,11 @@ def feature_matches() -> Demo:
 # ----------------------------------------------------------------------------- RANSAC
 
 
-# the residual histogram's bins, log-spaced from 0.02 to 300 px, and one more from 300 to 450 px for every
-# error above 300 px (drawn whole inside the axis); the first bar also counts errors below 0.02 px
-_RESIDUAL_BINS = np.append(np.logspace(np.log10(0.02), np.log10(300), 43), 450.0)
+# the residual histogram's bins, log-spaced from 0.02 to 300 px; one more below, one bin wide and left of
+# 0.02 px (the slider's least threshold), for every error under 0.02 px, so it holds inliers only; and one
+# more from 300 to 450 px for every error above 300 px (drawn whole inside the axis)
+_LOG_BINS = np.logspace(np.log10(0.02), np.log10(300), 43)
+_RESIDUAL_BINS = np.concatenate([[0.02**2 / _LOG_BINS[1]], _LOG_BINS, [450.0]])
 
 
 def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
@@ -207,9 +209,9 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
         ylabel="matches per bin (tallest = 1)\ngreen: inliers, red: rejected",
         xscale="log",
         xlim=(
-            0.014,
+            0.013,
             640,
-        ),  # a little below the slider's 0.02 px (its threshold line shows), the > 300 px bar whole, off the spine
+        ),  # the < 0.02 px bar and the > 300 px bar whole, off the spines
         ylim=(0, 1.55),
         yticks=[0, 0.5, 1],
     )
@@ -238,10 +240,10 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
 def _set_residual_bars(bars: tuple, res: np.ndarray, inliers: np.ndarray) -> int:
     """Stack each bin of :data:`_RESIDUAL_BINS`: the ``inliers`` of residuals ``res`` green, the rest red on top.
 
-    Residuals beyond the axis are counted in the end bins. Returns the number of matches the
+    Residuals below 0.02 px or above 300 px are counted in the end bins. Returns the number of matches the
     green bars hold (every inlier, so the picture agrees with the verdict's count).
     """
-    clipped = np.clip(res, 0.0201, 449)
+    clipped = np.clip(res, 1.001 * _RESIDUAL_BINS[0], 449)
     n_in, _ = np.histogram(clipped[inliers], _RESIDUAL_BINS)
     n_out, _ = np.histogram(clipped[~inliers], _RESIDUAL_BINS)
     top = max((n_in + n_out).max(), 1)
@@ -274,9 +276,8 @@ def _registration_texts(r, n: int, wrong: int, err: float) -> tuple[str, str]:
     """
     need = max(15, int(np.floor(8 + 0.3 * n)) + 1)  # register_pair's acceptance test
     verdict = (
-        f"{int(r.inliers.sum())} of {n} matches are inliers "
-        f"({wrong} of them wrong)\n"
-        f"worst corner vs the true H: {err:.2f} px\n"
+        f"{int(r.inliers.sum())} of {n} matches are inliers, {wrong} of them\n"
+        f"> 2 px off the true H; worst corner {err:.2f} px off\n"
         + ("accepted" if r.accepted else f"rejected: {r.reason.split(':')[0]} (need {need})")
         + (
             "\nthe threshold is below the features' noise"
@@ -286,7 +287,7 @@ def _registration_texts(r, n: int, wrong: int, err: float) -> tuple[str, str]:
     )
     readout = monospace(
         f"matches: {n}\ninliers: {int(r.inliers.sum())} "
-        f"({wrong} of them wrong)\n"
+        f"({wrong} of them > 2 px off the true H)\n"
         f"inlier RMS: {r.residual_rms:.2f} px\nworst corner vs truth: {err:.2f} px\n"
         + ("verdict: accepted" if r.accepted else f"verdict: rejected, {r.reason}")
     )
