@@ -373,7 +373,7 @@ def blending_seams() -> Demo:
         out, rgba = cache[key]
         im.set_data(rgba)
         title.set_text(
-            f"{_blend_name(v['method'], int(v['levels']))}: two views whose exposures differ by 30%, "
+            f"{_blend_name(v['method'], int(v['levels']))}: exposures 30% apart, "
             + (f"gains {gains[0]:.3f}, {gains[1]:.3f} applied" if v["gains"] else "before gains")
         )
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
