@@ -72,7 +72,8 @@ def test_lesson_06_runs_and_a_slider_moves_the_figure(lab):
             unnamed = page.evaluate(
                 "() => [...document.querySelectorAll('.jp-OutputArea [role=slider]')].filter(h => !h.getAttribute('aria-label')).length"
             )
-            figure = demo.locator(".jupyter-matplotlib-canvas-div").first
+            # a figure ipympl still draws (parallel_lines is drawn in the browser: camlab.widgets.browser)
+            figure = page.locator(".jp-OutputArea .jupyter-matplotlib-canvas-div").first
             figure.focus()
             focused_before = figure.evaluate("el => el === document.activeElement")
             page.keyboard.press("Tab")

@@ -129,10 +129,6 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
     ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
     ax.set_xticks([])
     ax.set_yticks([])
-    # no frame: each canvas is fitted into the fixed box, and a frame round the box would enclose
-    # white margins beside a narrower canvas; the canvas's own black edges show where it ends
-    for spine in ax.spines.values():
-        spine.set_visible(False)
     title = view.animate(ax.set_title(" ", fontsize=9))
     return view, ax, im, lines, legend, title
 
