@@ -353,6 +353,11 @@ def corner_keys(
     return {"corner": pick, "corner_u": u, "corner_v": v}
 
 
+def _cross2(a: np.ndarray, b: np.ndarray) -> float:
+    """The z component of a x b for 2-vectors (numpy 2 refuses np.cross of 2-vectors)."""
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
 def convex_margin(corners: np.ndarray) -> float:
     """The smallest distance (px) of a corner from the line of a side it is not on; < 0 if not convex.
 
@@ -378,7 +383,7 @@ def convex_margin(corners: np.ndarray) -> float:
         return -np.inf
     return float(
         min(
-            np.sign(area) * np.cross(e[k], q[(k + j) % 4] - q[k]) / lengths[k]
+            np.sign(area) * _cross2(e[k], q[(k + j) % 4] - q[k]) / lengths[k]
             for k in range(4)
             for j in (2, 3)
         )
