@@ -299,7 +299,13 @@ def _diagnosis(args, got, expected) -> str:
 
 
 def _exception_hint(exc: Exception, args: tuple) -> str:
-    """J.T @ Sigma @ J for J @ Sigma @ J.T: the shapes clash inside the matmul."""
+    """J.T @ Sigma @ J for J @ Sigma @ J.T: the shapes clash inside the matmul, or in the sum."""
+    text = str(exc).replace(" ", "")
+    if isinstance(exc, ValueError) and "broadcast" in text and "(4,4)" in text:
+        return (
+            "a (4, 4) term met the (3, 3) ones in the sum: J_u.T @ J_u is in the four pixel coordinates' "
+            "space. The picking term maps them into the point's, sigma_u**2 * J_u @ J_u.T, (3, 4) (4, 3) = (3, 3)."
+        )
     if not (isinstance(exc, ValueError) and "matmul" in str(exc)):
         return ""
     return (

@@ -317,6 +317,9 @@ def _diagnosis(args, got, expected) -> str:
     )
     if hint:
         return hint
+    hint = _one_focal(np.asarray(args[0], dtype=float), g.astype(float), expected)
+    if hint:
+        return hint
     bad = [k for k in range(6) if not np.allclose(g[:, k], expected[:, k], rtol=1e-6, atol=1e-6)]
     worst = float(np.max(np.abs(g - expected)) / np.max(np.abs(expected)))
     if worst < 1e-2:
@@ -332,6 +335,28 @@ def _diagnosis(args, got, expected) -> str:
         "[0, fy/z, -fy y/z^2]], then d X_c / d dw = -[X_c - t]x and d X_c / d dt = I. Central "
         "differences of your projection, one parameter at a time, show which is off."
     )
+
+
+def _one_focal(K, got, expected) -> str:
+    """The hint for rows each scaled by one factor, as if one focal length f served both (or "")."""
+    scale = [float(got[k] @ expected[k] / (expected[k] @ expected[k])) for k in (0, 1)]
+    if not all(np.allclose(got[k], scale[k] * expected[k], rtol=1e-6, atol=1e-9) for k in (0, 1)):
+        return ""
+    f_u, f_v = scale[0] * K[0, 0], scale[1] * K[1, 1]  # the focal length each row was built with
+    if np.allclose(scale, 1.0, rtol=1e-6) or abs(f_u - f_v) > 1e-6 * K[0, 0]:
+        return ""
+    return (
+        f"both rows are built with one focal length, f = {f_u:.4f} (fx = {K[0, 0]:.4f}, fy = {K[1, 1]:.4f}): "
+        "each row carries its own, u = fx x / z + cx with fx = K[0, 0] for the u row and v = fy y / z + cy "
+        "with fy = K[1, 1] for the v row. Averaging them, (fx + fy) / 2, is not exact when fx and fy differ."
+    )
+
+
+def _averaged_focal(K, R, t, X):
+    """A slip: one focal length, (fx + fy) / 2, for both rows."""
+    K1 = np.array(K, dtype=float)
+    K1[0, 0] = K1[1, 1] = (K1[0, 0] + K1[1, 1]) / 2
+    return point_jacobian(K1, R, t, X)
 
 
 def _forward_difference(K, R, t, X):
@@ -383,6 +408,7 @@ register_exercise(
             (_variant("dt sign"), "d X_c / d dt = +I"),
             (_variant("dt through R"), "carry R"),
             ((lambda K, R, t, X: _forward_difference(K, R, t, X)), "forward difference"),
+            ((lambda K, R, t, X: _averaged_focal(K, R, t, X)), "one focal length"),
             ((lambda K, R, t, X: point_jacobian(K, R, t, X).T), "transpose"),
         ),
         teaching=point_jacobian,
