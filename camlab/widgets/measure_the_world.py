@@ -146,13 +146,22 @@ def _plan_view(ax) -> None:
     ax.plot(BOARD[:, 1], BOARD[:, 0], ".", ms=2, color="0.1")  # the 54 corners
     ax.plot(*OBJECT[:, [1, 0]].T, "-", color=palette.PURPLE, lw=3, solid_capstyle="butt")
     ax.plot(*OBJECT_ACROSS[:, [1, 0]].T, "-", color=palette.BROWN, lw=3, solid_capstyle="butt")
-    ax.plot(CENTRE[1], CENTRE[0], "+", color="0.4", ms=8, mew=1.5)  # where the optical axis meets it
+    ax.plot(
+        CENTRE[1], CENTRE[0], "+", color="0.4", ms=8, mew=1.5
+    )  # where the optical axis meets it
     text = dict(fontsize=7, path_effects=palette.halo(2))
     ax.text(-0.03, 0.1, "board", color="0.1", rotation=90, ha="center", va="center", **text)
-    ax.annotate("along the slope", (0.0625, 0.24), xytext=(-0.08, 0.275), color=palette.PURPLE, **text)
     ax.annotate(
-        "across", (0.165, 0.1), xytext=(0.172, 0.1), color=palette.BROWN, rotation=90,
-        va="center", **text
+        "along the slope", (0.0625, 0.24), xytext=(-0.08, 0.275), color=palette.PURPLE, **text
+    )
+    ax.annotate(
+        "across",
+        (0.165, 0.1),
+        xytext=(0.172, 0.1),
+        color=palette.BROWN,
+        rotation=90,
+        va="center",
+        **text,
     )
 
 
@@ -184,7 +193,10 @@ def _figure() -> SimpleNamespace:
     ax_img.set_xlabel("u (px)", fontsize=8)
     ax_img.set_ylabel("v (px)", fontsize=8)
     ax_img.tick_params(labelsize=7)
-    ax_img.set_title("the photo: the board's corners and the edges\nalong (purple) and across (brown) the slope", fontsize=9)
+    ax_img.set_title(
+        "the photo: the board's corners and the edges\nalong (purple) and across (brown) the slope",
+        fontsize=9,
+    )
     (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.GREY)
     (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.PURPLE)
     (edge_x,) = ax_img.plot([], [], "-s", lw=2, ms=4, color=palette.BROWN)
