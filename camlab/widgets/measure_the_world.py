@@ -455,8 +455,8 @@ def ray_angle() -> Demo:
         readout.value = monospace(
             f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (ellipse half-axis {k95 * depth:5.2f} mm)\n"
             f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (ellipse half-axis {k95 * across:5.2f} mm)\n"
-            f"the 95 % ellipse is 2.45 σ wide each way (2-D: √χ²₂(0.95) = √5.991); "
-            f"one coordinate alone is within ± 1.96 σ 95 % of the time (depth ± {1.96 * depth:.2f} mm)\n"
+            "the 95 % ellipse reaches 2.45 σ along each axis (2-D: √χ²₂(0.95) = √5.991);\n"
+            f"one coordinate alone lies within ± 1.96 σ 95 % of the time (depth ± {1.96 * depth:.2f} mm)\n"
             f"depth / across = cot(α/2) = {depth / across:.2f}"
             + (
                 ""
