@@ -397,6 +397,46 @@ RAY_MM_PER_PX = 0.332
 0.166 mm / sin(alpha/2) at 0.5 px picking (measured there, asserted in the lesson's cell)."""
 
 
+ALPHAS = np.linspace(3.0, 120.0, 118)
+
+
+def _ray_figure() -> SimpleNamespace:
+    """The two rays and their ellipse (left), and the two laws against the angle (right)."""
+    view = FigureView(figsize=(9.0, 5.0))
+    ax, ax_law = view.fig.subplots(1, 2, width_ratios=[1, 1.15])
+    ax.set(xlim=(-6, 6), ylim=(-10, 10), aspect="equal")
+    ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
+    ax.set_ylabel("depth, along the bisector (mm)", fontsize=8)
+    ax_law.set(xlim=(0, 122), ylim=(0.02, 20), yscale="log")
+    ax_law.set_xlabel("angle α between the rays (deg)", fontsize=8)
+    ax_law.set_ylabel("one σ of the point (mm, log scale)", fontsize=8)
+    ax_law.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))
+    ax_law.set_title("the two laws at this picking σ", fontsize=9)
+    for a in (ax, ax_law):
+        a.tick_params(labelsize=7)
+        a.grid(alpha=0.3)
+    f = SimpleNamespace(view=view, ax=ax)
+    f.rays = [ax.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
+    f.bands = [ax.plot([], [], ":", color=palette.ORANGE, lw=1)[0] for _ in range(4)]
+    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
+    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
+    ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
+    ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
+    ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
+    (f.law_depth,) = ax_law.plot(
+        [], [], "-", color=palette.BLUE, lw=2, label="σ depth = c / sin(α/2)"
+    )
+    (f.law_across,) = ax_law.plot(
+        [], [], "--", color=palette.BLUE, lw=1.5, label="σ across = c / cos(α/2)"
+    )
+    (f.here,) = ax_law.plot([], [], "o", mfc="none", mec="0.1", mew=1.5, ms=7, label="this α")
+    handles = ax.get_legend_handles_labels()[0] + ax_law.get_legend_handles_labels()[0]
+    view.fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=7)
+    ax.set_title(" ", fontsize=9)
+    view.animate(*f.rays, *f.bands, f.ellipse, f.axes_, ax.title, f.law_depth, f.law_across, f.here)
+    return f
+
+
 @register(lesson="12", sweep={"alpha": [5.0, 40.0, 120.0], "pick": [0.1, 1.0]})
 def ray_angle() -> Demo:
     r"""Two rays crossing at a corner: the 95 % ellipse of the triangulated point as the angle closes.
@@ -413,26 +453,11 @@ def ray_angle() -> Demo:
         Controls ``alpha`` (the angle between the rays, degrees) and ``pick`` (picking sigma, px);
         ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma) and ``in_frame``.
     """
-    view = FigureView(figsize=(6.0, 5.4))
-    ax = view.fig.subplots()
-    ax.set(xlim=(-6, 6), ylim=(-10, 10), aspect="equal")
-    ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
-    ax.set_ylabel("depth, along the bisector (mm)", fontsize=8)
-    ax.tick_params(labelsize=7)
-    ax.grid(alpha=0.3)
-    rays = [ax.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
-    bands = [ax.plot([], [], ":", color=palette.ORANGE, lw=1)[0] for _ in range(4)]
-    (ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
-    (axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
-    ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
-    ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
-    ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
-    view.fig.legend(loc="outside lower center", ncols=3, fontsize=7)
-    ax.set_title(" ", fontsize=9)
-    view.animate(*rays, *bands, ellipse, axes_, ax.title)
+    fig = _ray_figure()
     readout = W.HTML()
     ring = np.linspace(0, 2 * np.pi, 181)
     k95 = np.sqrt(5.991)  # chi^2 with 2 degrees of freedom, 95 %: the 2-D ellipse, not 1.96
+    rays, bands, ax = fig.rays, fig.bands, fig.ax
 
     def update(v, state):
         half = np.radians(v["alpha"]) / 2
@@ -444,20 +469,25 @@ def ray_angle() -> Demo:
             ray.set_data(*np.outer([-20, 20], d).T)
             for s, band in zip((-1, 1), pair, strict=True):
                 band.set_data(*(np.outer([-20, 20], d) + s * e * n).T)
-        ellipse.set_data(k95 * across * np.cos(ring), k95 * depth * np.sin(ring))
-        axes_.set_data(
+        fig.ellipse.set_data(k95 * across * np.cos(ring), k95 * depth * np.sin(ring))
+        c = RAY_MM_PER_PX * v["pick"]
+        fig.law_depth.set_data(ALPHAS, c / np.sin(np.radians(ALPHAS) / 2))
+        fig.law_across.set_data(ALPHAS, c / np.cos(np.radians(ALPHAS) / 2))
+        fig.here.set_data([v["alpha"]] * 2, [depth, across])
+        fig.axes_.set_data(
             [-k95 * across, k95 * across, np.nan, 0, 0], [0, 0, np.nan, -k95 * depth, k95 * depth]
         )
         ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px")
         in_frame = bool(k95 * depth <= 10 and k95 * across <= 6)
         state.update(depth_mm=depth, across_mm=across, in_frame=in_frame)
-        c = RAY_MM_PER_PX * v["pick"]
         readout.value = monospace(
             f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (ellipse half-axis {k95 * depth:5.2f} mm)\n"
             f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (ellipse half-axis {k95 * across:5.2f} mm)\n"
             "the 95 % ellipse reaches 2.45 σ along each axis (2-D: √χ²₂(0.95) = √5.991);\n"
             f"one coordinate alone lies within ± 1.96 σ 95 % of the time (depth ± {1.96 * depth:.2f} mm)\n"
-            f"depth / across = cot(α/2) = {depth / across:.2f}"
+            f"depth / across = cot(α/2) = {depth / across:.2f}\n"
+            f"{c:.3f} mm = e/√2: a pick off by {v['pick']:.2f} px moves each ray {np.sqrt(2) * c:.3f} mm sideways "
+            "at section 3's corner, 303 mm from its camera"
             + (
                 ""
                 if in_frame
@@ -472,7 +502,7 @@ def ray_angle() -> Demo:
     return build_demo(
         "ray_angle",
         controls,
-        view,
+        fig.view,
         update,
         title="Two rays: the ellipse as the angle closes",
         extra=[readout],
