@@ -166,6 +166,20 @@ _MISTAKES = (
         "separately), so d X_c / d dw = -[X_c - t]x = -[R X]x.",
     ),
     Mistake(
+        "+[X_c]x",
+        lambda c: c.with_(_skew(c.Xc)),
+        "two slips in the rotation columns: the sign and the vector. [dw]x (R X) = -(R X) x dw gives a "
+        "minus, and the left rotation turns R X = X_c - t, not X_c (t moves by dt separately): "
+        "d X_c / d dw = -[X_c - t]x.",
+    ),
+    Mistake(
+        "+[X]x",
+        lambda c: c.with_(_skew(c.X)),
+        "two slips in the rotation columns: the sign and the vector. [dw]x (R X) = -(R X) x dw gives a "
+        "minus, and the small rotation turns R X (the point in the camera's axes), not the world point X: "
+        "d X_c / d dw = -[R X]x = -[X_c - t]x.",
+    ),
+    Mistake(
         "right perturbation",
         lambda c: c.with_(-c.R @ _skew(c.X)),
         "you perturbed on the right, R <- R exp([dw]x) (dw in the world's axes): section 1 applies the "
@@ -386,6 +400,8 @@ register_exercise(
             (_variant("X for X_c - t"), "world point X"),
             (_variant("X_c for X_c - t"), "used X_c"),
             (_variant("right perturbation"), "on the right"),
+            (_variant("+[X_c]x"), "the sign and the vector"),
+            (_variant("+[X]x"), "not the world point X"),
             (_variant("no -x/z^2 term"), "third column"),
             (_variant("z not squared"), "divides by z once"),
             (_variant("u for u - cx"), "includes cx"),
