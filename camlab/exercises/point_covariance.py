@@ -125,6 +125,8 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         + J_B @ np.diag(np.diag(Sigma_B)) @ J_B.T
         + sigma_u**2 * u,
         averaged=(a + b) / 2 + sigma_u**2 * u,
+        one_jacobian=a + J_A @ Sigma_B @ J_A.T + sigma_u**2 * u,
+        all_averaged=(a + b + sigma_u**2 * u) / 2,
         picks_diagonal=a + b + sigma_u**2 * np.diag(np.diag(u)),
         picks_halved=a + b + (sigma_u / 2) ** 2 * u,
         sigma_A_twice=a + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
@@ -132,6 +134,18 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
 
 
 _MISTAKES = (
+    Mistake(
+        "J_A for both poses",
+        lambda c: c.one_jacobian,
+        "your pose B term uses J_A: each pose moves the point through its own Jacobian, so pose B's "
+        "term is J_B @ Sigma_B @ J_B.T (the two cameras see the point from different directions).",
+    ),
+    Mistake(
+        "everything averaged",
+        lambda c: c.all_averaged,
+        "your covariance is half the answer: the three sources are independent, so their covariances "
+        "ADD (J_A Sigma_A J_A^T + J_B Sigma_B J_B^T + sigma_u^2 J_u J_u^T); do not average them.",
+    ),
     Mistake(
         "sigma_u not squared",
         lambda c: c.not_squared,
@@ -336,6 +350,8 @@ register_exercise(
         diagnose=_diagnosis,
         exception_hint=_exception_hint,
         wrong_variants=(
+            (_variant("J_A for both poses"), "its own Jacobian"),
+            (_variant("everything averaged"), "do not average"),
             (_variant("sigma_u not squared"), "variance belongs"),
             (_variant("no picking term"), "left out the picking"),
             (_variant("no pose terms"), "left out the poses"),
