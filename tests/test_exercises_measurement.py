@@ -122,6 +122,20 @@ def test_point_jacobian_names_a_forward_difference_with_its_columns():
     assert "forward difference" in str(info.value) and "columns []" not in str(info.value)
 
 
+@pytest.mark.parametrize("focal", ["mean", "fy"])
+def test_point_jacobian_names_one_focal_length_for_both_rows(focal):
+    from camlab.exercises.point_jacobian import point_jacobian
+
+    def one_focal(K, R, t, X):  # (fx + fy) / 2, or fy, for both rows
+        K1 = np.array(K, dtype=float)
+        K1[0, 0] = K1[1, 1] = (K1[0, 0] + K1[1, 1]) / 2 if focal == "mean" else K1[1, 1]
+        return point_jacobian(K1, R, t, X)
+
+    with pytest.raises(AssertionError) as info:
+        check("point_jacobian", one_focal)
+    assert "one focal length" in str(info.value) and "forward difference" not in str(info.value)
+
+
 def test_pose_covariance_names_a_scaled_sigma():
     from camlab.exercises.pose_uncertainty import pose_covariance
 
@@ -215,3 +229,12 @@ def test_point_covariance_in_mm2_prints_the_expected_in_significant_digits():
         check("point_covariance", lambda *args: 1e6 * point_covariance(*args))
     message = str(info.value)
     assert "0.0000" not in message.split("expected", 1)[1], message
+
+
+def test_point_covariance_names_a_transposed_picking_term():
+    def picking_transposed(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):  # J_u.T @ J_u: (4, 4)
+        return J_A @ Sigma_A @ J_A.T + J_B @ Sigma_B @ J_B.T + sigma_u**2 * J_u.T @ J_u
+
+    with pytest.raises(AssertionError) as info:
+        check("point_covariance", picking_transposed)
+    assert "J_u @ J_u.T" in str(info.value) and "(4, 4) term" in str(info.value)

@@ -297,5 +297,9 @@ register_exercise(
             (_variant("R.T for R"), "R.T where R belongs"),
         ),
         teaching=height_above_plane,
+        solution_note=(
+            "# camlab: camlab.measurement.measure_on_plane(pose, K, a, b) reads the segment on the plane "
+            "(with its sigma);\n# pose.centre is C = -R^T t, so Z = abs(pose.centre[2]) (lesson 12, section 2)."
+        ),
     )
 )

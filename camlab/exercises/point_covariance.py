@@ -125,6 +125,8 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         + J_B @ np.diag(np.diag(Sigma_B)) @ J_B.T
         + sigma_u**2 * u,
         averaged=(a + b) / 2 + sigma_u**2 * u,
+        one_jacobian=a + J_A @ Sigma_B @ J_A.T + sigma_u**2 * u,
+        all_averaged=(a + b + sigma_u**2 * u) / 2,
         picks_diagonal=a + b + sigma_u**2 * np.diag(np.diag(u)),
         picks_halved=a + b + (sigma_u / 2) ** 2 * u,
         sigma_A_twice=a + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
@@ -132,6 +134,18 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
 
 
 _MISTAKES = (
+    Mistake(
+        "J_A for both poses",
+        lambda c: c.one_jacobian,
+        "your pose B term uses J_A: each pose moves the point through its own Jacobian, so pose B's "
+        "term is J_B @ Sigma_B @ J_B.T (the two cameras see the point from different directions).",
+    ),
+    Mistake(
+        "everything averaged",
+        lambda c: c.all_averaged,
+        "your covariance is half the answer: the three sources are independent, so their covariances "
+        "ADD (J_A Sigma_A J_A^T + J_B Sigma_B J_B^T + sigma_u^2 J_u J_u^T); do not average them.",
+    ),
     Mistake(
         "sigma_u not squared",
         lambda c: c.not_squared,
@@ -299,7 +313,13 @@ def _diagnosis(args, got, expected) -> str:
 
 
 def _exception_hint(exc: Exception, args: tuple) -> str:
-    """J.T @ Sigma @ J for J @ Sigma @ J.T: the shapes clash inside the matmul."""
+    """J.T @ Sigma @ J for J @ Sigma @ J.T: the shapes clash inside the matmul, or in the sum."""
+    text = str(exc).replace(" ", "")
+    if isinstance(exc, ValueError) and "broadcast" in text and "(4,4)" in text:
+        return (
+            "a (4, 4) term met the (3, 3) ones in the sum: J_u.T @ J_u is in the four pixel coordinates' "
+            "space. The picking term maps them into the point's, sigma_u**2 * J_u @ J_u.T, (3, 4) (4, 3) = (3, 3)."
+        )
     if not (isinstance(exc, ValueError) and "matmul" in str(exc)):
         return ""
     return (
@@ -330,6 +350,8 @@ register_exercise(
         diagnose=_diagnosis,
         exception_hint=_exception_hint,
         wrong_variants=(
+            (_variant("J_A for both poses"), "its own Jacobian"),
+            (_variant("everything averaged"), "do not average"),
             (_variant("sigma_u not squared"), "variance belongs"),
             (_variant("no picking term"), "left out the picking"),
             (_variant("no pose terms"), "left out the poses"),

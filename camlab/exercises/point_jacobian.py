@@ -166,6 +166,20 @@ _MISTAKES = (
         "separately), so d X_c / d dw = -[X_c - t]x = -[R X]x.",
     ),
     Mistake(
+        "+[X_c]x",
+        lambda c: c.with_(_skew(c.Xc)),
+        "two slips in the rotation columns: the sign and the vector. [dw]x (R X) = -(R X) x dw gives a "
+        "minus, and the left rotation turns R X = X_c - t, not X_c (t moves by dt separately): "
+        "d X_c / d dw = -[X_c - t]x.",
+    ),
+    Mistake(
+        "+[X]x",
+        lambda c: c.with_(_skew(c.X)),
+        "two slips in the rotation columns: the sign and the vector. [dw]x (R X) = -(R X) x dw gives a "
+        "minus, and the small rotation turns R X (the point in the camera's axes), not the world point X: "
+        "d X_c / d dw = -[R X]x = -[X_c - t]x.",
+    ),
+    Mistake(
         "right perturbation",
         lambda c: c.with_(-c.R @ _skew(c.X)),
         "you perturbed on the right, R <- R exp([dw]x) (dw in the world's axes): section 1 applies the "
@@ -317,6 +331,9 @@ def _diagnosis(args, got, expected) -> str:
     )
     if hint:
         return hint
+    hint = _one_focal(np.asarray(args[0], dtype=float), g.astype(float), expected)
+    if hint:
+        return hint
     bad = [k for k in range(6) if not np.allclose(g[:, k], expected[:, k], rtol=1e-6, atol=1e-6)]
     worst = float(np.max(np.abs(g - expected)) / np.max(np.abs(expected)))
     if worst < 1e-2:
@@ -332,6 +349,28 @@ def _diagnosis(args, got, expected) -> str:
         "[0, fy/z, -fy y/z^2]], then d X_c / d dw = -[X_c - t]x and d X_c / d dt = I. Central "
         "differences of your projection, one parameter at a time, show which is off."
     )
+
+
+def _one_focal(K, got, expected) -> str:
+    """The hint for rows each scaled by one factor, as if one focal length f served both (or "")."""
+    scale = [float(got[k] @ expected[k] / (expected[k] @ expected[k])) for k in (0, 1)]
+    if not all(np.allclose(got[k], scale[k] * expected[k], rtol=1e-6, atol=1e-9) for k in (0, 1)):
+        return ""
+    f_u, f_v = scale[0] * K[0, 0], scale[1] * K[1, 1]  # the focal length each row was built with
+    if np.allclose(scale, 1.0, rtol=1e-6) or abs(f_u - f_v) > 1e-6 * K[0, 0]:
+        return ""
+    return (
+        f"both rows are built with one focal length, f = {f_u:.4f} (fx = {K[0, 0]:.4f}, fy = {K[1, 1]:.4f}): "
+        "each row carries its own, u = fx x / z + cx with fx = K[0, 0] for the u row and v = fy y / z + cy "
+        "with fy = K[1, 1] for the v row. Averaging them, (fx + fy) / 2, is not exact when fx and fy differ."
+    )
+
+
+def _averaged_focal(K, R, t, X):
+    """A slip: one focal length, (fx + fy) / 2, for both rows."""
+    K1 = np.array(K, dtype=float)
+    K1[0, 0] = K1[1, 1] = (K1[0, 0] + K1[1, 1]) / 2
+    return point_jacobian(K1, R, t, X)
 
 
 def _forward_difference(K, R, t, X):
@@ -361,6 +400,8 @@ register_exercise(
             (_variant("X for X_c - t"), "world point X"),
             (_variant("X_c for X_c - t"), "used X_c"),
             (_variant("right perturbation"), "on the right"),
+            (_variant("+[X_c]x"), "the sign and the vector"),
+            (_variant("+[X]x"), "not the world point X"),
             (_variant("no -x/z^2 term"), "third column"),
             (_variant("z not squared"), "divides by z once"),
             (_variant("u for u - cx"), "includes cx"),
@@ -383,6 +424,7 @@ register_exercise(
             (_variant("dt sign"), "d X_c / d dt = +I"),
             (_variant("dt through R"), "carry R"),
             ((lambda K, R, t, X: _forward_difference(K, R, t, X)), "forward difference"),
+            ((lambda K, R, t, X: _averaged_focal(K, R, t, X)), "one focal length"),
             ((lambda K, R, t, X: point_jacobian(K, R, t, X).T), "transpose"),
         ),
         teaching=point_jacobian,

@@ -120,7 +120,7 @@ SIDE_LIM = ((-0.25, 1.6), (-0.1, 1.6))  # the side view's y and height limits, m
 
 
 def _side_view(ax) -> SimpleNamespace:
-    """The side view (board y across, height above the table up): table, board, edges, camera."""
+    """The side view (board y across, height above the table up): table, board, camera."""
     ax.set(xlim=SIDE_LIM[0], ylim=SIDE_LIM[1], aspect="equal")
     ax.set_xlabel("board y (m)", fontsize=8)
     ax.set_ylabel("height above the table (m)", fontsize=8)
@@ -128,20 +128,41 @@ def _side_view(ax) -> SimpleNamespace:
     ax.grid(alpha=0.3)
     ax.set_title("side view: the camera (orange)", fontsize=9)
     ax.axhline(0, color="0.3", lw=1)  # the table
-    # the purple edge lies beside the board, so behind it in this view: drawn wide under a thin board
-    ax.plot(
-        OBJECT[:, 1], [0.0, 0.0], "-", color=palette.PURPLE, lw=7, solid_capstyle="butt", zorder=2
-    )
-    ax.plot(
-        [-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=2, solid_capstyle="butt", zorder=3
-    )  # the board
-    ax.plot(
-        OBJECT_ACROSS[0, 1], 0.0, "s", color=palette.BROWN, ms=6, zorder=4
-    )  # across: seen end-on
+    ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=3, solid_capstyle="butt", zorder=3)
     (rays,) = ax.plot([], [], "-", color=palette.ORANGE, lw=1)  # the photo's top and bottom rows
     (axis,) = ax.plot([], [], "--", color="0.4", lw=1)  # the optical axis, to the board's centre
     (eye,) = ax.plot([], [], "o", color=palette.ORANGE, ms=6)
     return SimpleNamespace(rays=rays, axis=axis, eye=eye)
+
+
+def _plan_view(ax) -> None:
+    """The table from above, zoomed on the board: where the two edges lie beside it (static)."""
+    ax.set(xlim=(-0.09, 0.26), ylim=(0.29, -0.05), aspect="equal")  # board x down, as in the photo
+    ax.set_xlabel("board y (m); the camera tilts toward +y", fontsize=8)
+    ax.set_ylabel("board x (m)", fontsize=8)
+    ax.tick_params(labelsize=7)
+    ax.grid(alpha=0.3)
+    ax.set_title("the table from above (zoom)", fontsize=9)
+    ax.plot(BOARD[:, 1], BOARD[:, 0], ".", ms=2, color="0.1")  # the 54 corners
+    ax.plot(*OBJECT[:, [1, 0]].T, "-", color=palette.PURPLE, lw=3, solid_capstyle="butt")
+    ax.plot(*OBJECT_ACROSS[:, [1, 0]].T, "-", color=palette.BROWN, lw=3, solid_capstyle="butt")
+    ax.plot(
+        CENTRE[1], CENTRE[0], "+", color="0.4", ms=8, mew=1.5
+    )  # where the optical axis meets it
+    text = dict(fontsize=7, path_effects=palette.halo(2))
+    ax.text(-0.03, 0.1, "board", color="0.1", rotation=90, ha="center", va="center", **text)
+    ax.annotate(
+        "along the slope", (0.0625, 0.24), xytext=(-0.08, 0.275), color=palette.PURPLE, **text
+    )
+    ax.annotate(
+        "across",
+        (0.165, 0.1),
+        xytext=(0.172, 0.1),
+        color=palette.BROWN,
+        rotation=90,
+        va="center",
+        **text,
+    )
 
 
 def _side_update(side: SimpleNamespace, g: SimpleNamespace) -> None:
@@ -159,14 +180,23 @@ def _side_update(side: SimpleNamespace, g: SimpleNamespace) -> None:
 
 
 def _figure() -> SimpleNamespace:
-    view = FigureView(figsize=(10.4, 4.2))
-    ax_img, ax_side, ax_plot = view.fig.subplots(1, 3, gridspec_kw={"width_ratios": [1.1, 0.8, 1]})
+    view = FigureView(figsize=(10.4, 5.0))
+    axes = view.fig.subplot_mosaic(
+        [["img", "side", "plot"], ["img", "plan", "plot"]],
+        width_ratios=[1.1, 0.8, 1],
+        height_ratios=[1.25, 1],
+    )
+    ax_img, ax_side, ax_plot = axes["img"], axes["side"], axes["plot"]
     side = _side_view(ax_side)
+    _plan_view(axes["plan"])
     ax_img.set(xlim=(-0.5, SIZE[0] - 0.5), ylim=(SIZE[1] - 0.5, -0.5), aspect="equal")
     ax_img.set_xlabel("u (px)", fontsize=8)
     ax_img.set_ylabel("v (px)", fontsize=8)
     ax_img.tick_params(labelsize=7)
-    ax_img.set_title("the photo: board corners, edges along (purple), across (brown)", fontsize=9)
+    ax_img.set_title(
+        "the photo: the board's corners and the edges\nalong (purple) and across (brown) the slope",
+        fontsize=9,
+    )
     (corners,) = ax_img.plot([], [], ".", ms=3, color=palette.GREY)
     (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.PURPLE)
     (edge_x,) = ax_img.plot([], [], "-s", lw=2, ms=4, color=palette.BROWN)
@@ -191,7 +221,7 @@ def _figure() -> SimpleNamespace:
     (pose,) = ax_plot.plot([], [], "--", color="0.45", label="   its part from the pose")
     (across,) = ax_plot.plot([], [], "-", color=palette.BROWN, label="across the slope: total")
     (here,) = ax_plot.plot(
-        [], [], "o", mfc="white", mec="0.1", mew=1.5, ms=7, label="this tilt (both edges)"
+        [], [], "o", mfc="none", mec="0.1", mew=1.5, ms=7, label="this tilt (both edges)"
     )
     ax_plot.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))  # 0.1, 1, 10, not 10^-1
     view.fig.legend(  # one row across the whole figure, below every panel: never on a curve
@@ -367,6 +397,46 @@ RAY_MM_PER_PX = 0.332
 0.166 mm / sin(alpha/2) at 0.5 px picking (measured there, asserted in the lesson's cell)."""
 
 
+ALPHAS = np.linspace(3.0, 120.0, 118)
+
+
+def _ray_figure() -> SimpleNamespace:
+    """The two rays and their ellipse (left), and the two laws against the angle (right)."""
+    view = FigureView(figsize=(9.0, 5.0))
+    ax, ax_law = view.fig.subplots(1, 2, width_ratios=[1, 1.15])
+    ax.set(xlim=(-6, 6), ylim=(-10, 10), aspect="equal")
+    ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
+    ax.set_ylabel("depth, along the bisector (mm)", fontsize=8)
+    ax_law.set(xlim=(0, 122), ylim=(0.02, 20), yscale="log")
+    ax_law.set_xlabel("angle α between the rays (deg)", fontsize=8)
+    ax_law.set_ylabel("one σ of the point (mm, log scale)", fontsize=8)
+    ax_law.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))
+    ax_law.set_title("the two laws at this picking σ", fontsize=9)
+    for a in (ax, ax_law):
+        a.tick_params(labelsize=7)
+        a.grid(alpha=0.3)
+    f = SimpleNamespace(view=view, ax=ax)
+    f.rays = [ax.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
+    f.bands = [ax.plot([], [], ":", color=palette.ORANGE, lw=1)[0] for _ in range(4)]
+    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
+    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
+    ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
+    ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
+    ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
+    (f.law_depth,) = ax_law.plot(
+        [], [], "-", color=palette.BLUE, lw=2, label="σ depth = c / sin(α/2)"
+    )
+    (f.law_across,) = ax_law.plot(
+        [], [], "--", color=palette.BLUE, lw=1.5, label="σ across = c / cos(α/2)"
+    )
+    (f.here,) = ax_law.plot([], [], "o", mfc="none", mec="0.1", mew=1.5, ms=7, label="this α")
+    handles = ax.get_legend_handles_labels()[0] + ax_law.get_legend_handles_labels()[0]
+    view.fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=7)
+    ax.set_title(" ", fontsize=9)
+    view.animate(*f.rays, *f.bands, f.ellipse, f.axes_, ax.title, f.law_depth, f.law_across, f.here)
+    return f
+
+
 @register(lesson="12", sweep={"alpha": [5.0, 40.0, 120.0], "pick": [0.1, 1.0]})
 def ray_angle() -> Demo:
     r"""Two rays crossing at a corner: the 95 % ellipse of the triangulated point as the angle closes.
@@ -383,26 +453,11 @@ def ray_angle() -> Demo:
         Controls ``alpha`` (the angle between the rays, degrees) and ``pick`` (picking sigma, px);
         ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma) and ``in_frame``.
     """
-    view = FigureView(figsize=(6.4, 4.6))
-    ax = view.fig.subplots()
-    ax.set(xlim=(-4, 4), ylim=(-6, 6), aspect="equal")
-    ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
-    ax.set_ylabel("depth, along the bisector (mm)", fontsize=8)
-    ax.tick_params(labelsize=7)
-    ax.grid(alpha=0.3)
-    rays = [ax.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
-    bands = [ax.plot([], [], ":", color=palette.ORANGE, lw=1)[0] for _ in range(4)]
-    (ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
-    (axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
-    ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
-    ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
-    ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
-    view.fig.legend(loc="outside lower center", ncols=3, fontsize=7)
-    ax.set_title(" ", fontsize=9)
-    view.animate(*rays, *bands, ellipse, axes_, ax.title)
+    fig = _ray_figure()
     readout = W.HTML()
     ring = np.linspace(0, 2 * np.pi, 181)
-    k95 = np.sqrt(5.991)  # chi^2 with 2 degrees of freedom, 95 %
+    k95 = np.sqrt(5.991)  # chi^2 with 2 degrees of freedom, 95 %: the 2-D ellipse, not 1.96
+    rays, bands, ax = fig.rays, fig.bands, fig.ax
 
     def update(v, state):
         half = np.radians(v["alpha"]) / 2
@@ -414,18 +469,25 @@ def ray_angle() -> Demo:
             ray.set_data(*np.outer([-20, 20], d).T)
             for s, band in zip((-1, 1), pair, strict=True):
                 band.set_data(*(np.outer([-20, 20], d) + s * e * n).T)
-        ellipse.set_data(k95 * across * np.cos(ring), k95 * depth * np.sin(ring))
-        axes_.set_data(
+        fig.ellipse.set_data(k95 * across * np.cos(ring), k95 * depth * np.sin(ring))
+        c = RAY_MM_PER_PX * v["pick"]
+        fig.law_depth.set_data(ALPHAS, c / np.sin(np.radians(ALPHAS) / 2))
+        fig.law_across.set_data(ALPHAS, c / np.cos(np.radians(ALPHAS) / 2))
+        fig.here.set_data([v["alpha"]] * 2, [depth, across])
+        fig.axes_.set_data(
             [-k95 * across, k95 * across, np.nan, 0, 0], [0, 0, np.nan, -k95 * depth, k95 * depth]
         )
         ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px")
-        in_frame = bool(k95 * depth <= 6 and k95 * across <= 4)
+        in_frame = bool(k95 * depth <= 10 and k95 * across <= 6)
         state.update(depth_mm=depth, across_mm=across, in_frame=in_frame)
-        c = RAY_MM_PER_PX * v["pick"]
         readout.value = monospace(
-            f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (95 %: ± {k95 * depth:.2f} mm)\n"
-            f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (95 %: ± {k95 * across:.2f} mm)\n"
-            f"depth / across = cot(α/2) = {depth / across:.2f}"
+            f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (ellipse half-axis {k95 * depth:5.2f} mm)\n"
+            f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (ellipse half-axis {k95 * across:5.2f} mm)\n"
+            "the 95 % ellipse reaches 2.45 σ along each axis (2-D: √χ²₂(0.95) = √5.991);\n"
+            f"one coordinate alone lies within ± 1.96 σ 95 % of the time (depth ± {1.96 * depth:.2f} mm)\n"
+            f"depth / across = cot(α/2) = {depth / across:.2f}\n"
+            f"{c:.3f} mm = e/√2: a pick off by {v['pick']:.2f} px moves each ray {np.sqrt(2) * c:.3f} mm sideways "
+            "at section 3's corner, 303 mm from its camera"
             + (
                 ""
                 if in_frame
@@ -440,7 +502,7 @@ def ray_angle() -> Demo:
     return build_demo(
         "ray_angle",
         controls,
-        view,
+        fig.view,
         update,
         title="Two rays: the ellipse as the angle closes",
         extra=[readout],
