@@ -427,7 +427,7 @@ def transformation_hierarchy() -> Demo:
         "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
         "theta": slider(15.0, -180.0, 180.0, 1.0, "rotation θ (°)"),
         "scale": slider(1.2, 0.3, 2.5, 0.05, "scale s"),
-        "phi": slider(-30.0, -90.0, 90.0, 1.0, "affine: stretch axes φ (°)"),
+        "phi": slider(60.0, -90.0, 90.0, 1.0, "affine: stretch axes φ (°)"),
         "aspect": slider(1.4, 0.4, 2.5, 0.05, "affine: stretch √(sx/sy)"),
         "tx": slider(0.0, -100.0, 100.0, 1.0, "tx (px)"),
         "ty": slider(0.0, -80.0, 80.0, 1.0, "ty (px)"),
