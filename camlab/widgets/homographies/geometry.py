@@ -751,7 +751,7 @@ def _drag_line_names(ax_s, line_pts) -> None:
     """The points A..D on the source picture's diagonal, with their names."""
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
     # centred across the line, clear of its halo: below it, but D above it (below D is the frame)
-    across = 13 * _across(line_pts)
+    across = 16 * _across(line_pts)
     for name, p in zip("ABCD", line_pts, strict=True):
         ax_s.annotate(
             name,
