@@ -189,6 +189,13 @@ _PLANE_MISTAKES = (
         "translation, which the plane's term - t n^T / d brings in. H = K (R - t n^T / d) K^-1.",
     ),
     Mistake(
+        "H transposed",
+        lambda c: _with(c, c.R - c.t @ c.n / c.d).T,
+        "your H is the transpose of the right one. With points as rows the course maps them by "
+        "X @ H.T, so a .T slips in easily (or K^-T (R^T - n t^T / d) K^T, each factor transposed); "
+        "return H itself, for x2 ~ H x1 with columns: H = K (R - t n^T / d) K^-1.",
+    ),
+    Mistake(
         "the inverse",
         lambda c: np.linalg.inv(_with(c, c.R - c.t @ c.n / c.d)),
         "your H maps image 2 to image 1: it is the inverse. x2 ~ H x1, with camera 1 = K [I | 0] and "

@@ -103,10 +103,12 @@ def _hierarchy_texts(group, kind, Hg, H, picture_shape, canvas_hw):
 def _diagonal_points(picture_shape) -> np.ndarray:
     """The four points whose cross-ratio the hierarchy demo measures (on the picture's diagonal).
 
-    They lie 0, 1/4, 1/2 and 1 of the way from its top-left pixel centre to its bottom-right one.
+    They lie 0, 1/3, 2/3 and 1 of the way from its top-left pixel centre to its bottom-right one:
+    none at the middle, which H (acting about the picture's centre) never moves, so each point's
+    open "before" ring shows beside or around its filled "after" dot.
     """
     ph, pw = picture_shape[:2]
-    return np.array([[0.0], [0.25], [0.5], [1.0]]) * [pw - 1.0, ph - 1.0]
+    return np.array([[0.0], [1 / 3], [2 / 3], [1.0]]) * [pw - 1.0, ph - 1.0]
 
 
 def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
@@ -207,7 +209,7 @@ def _diagonal_artists(view, ax, before):
             mfc="white",
             mec=palette.BROWN,
             mew=1.5,
-            ms=6,
+            ms=9,
             zorder=4,
             label="cross-ratio points, before H",
         )[0]
@@ -219,7 +221,8 @@ def _diagonal_artists(view, ax, before):
             "o",
             color=palette.BROWN,
             mec="white",
-            ms=6,
+            mew=0.6,
+            ms=5.5,
             zorder=5,
             label="cross-ratio points, after H",
         )[0]
@@ -424,7 +427,7 @@ def transformation_hierarchy() -> Demo:
         "group": W.Dropdown(options=list(_GROUPS), value="affine", description="group"),
         "theta": slider(15.0, -180.0, 180.0, 1.0, "rotation θ (°)"),
         "scale": slider(1.2, 0.3, 2.5, 0.05, "scale s"),
-        "phi": slider(30.0, -90.0, 90.0, 1.0, "affine: stretch axes φ (°)"),
+        "phi": slider(60.0, -90.0, 90.0, 1.0, "affine: stretch axes φ (°)"),
         "aspect": slider(1.4, 0.4, 2.5, 0.05, "affine: stretch √(sx/sy)"),
         "tx": slider(0.0, -100.0, 100.0, 1.0, "tx (px)"),
         "ty": slider(0.0, -80.0, 80.0, 1.0, "ty (px)"),
@@ -530,8 +533,9 @@ def _drag_notes(labels, points, out_hw, H) -> str:
 def _place_names(labels, points, corners, out_hw) -> None:
     """Put the names A'..D' beside their points, clear of the corner markers and of each other.
 
-    A name sits across the line A'D' from its point (on the upper side, centred 13 points off, clear
-    of the line's halo), or on the side away from a corner marker within 20 px. It is hidden where
+    A name sits across the line A'D' from its point (on the upper side, centred 11 points off, 18
+    across a vertical line, where the text is widest), or 17 points off on the side away from a
+    corner marker within 20 px. It is hidden where
     its text would run off the canvas, where its point lies under a marker (within 4 px of a
     corner), or within 14 px of a name already shown.
 
@@ -552,9 +556,11 @@ def _place_names(labels, points, corners, out_hw) -> None:
         label.xy = tuple(p)
         gap = np.linalg.norm(corners - p, axis=1) if np.isfinite(p).all() else np.full(4, np.inf)
         away = p - corners[np.argmin(gap)]
-        offset = tuple(13 * across)
+        offset = tuple(
+            (11 + 7 * abs(across[0])) * across
+        )  # wider across a steep line: text is wide
         if gap.min() < 20:  # the side away from the nearest marker (v points down, offsets up)
-            d = away / max(np.linalg.norm(away), 1e-9) * 13
+            d = away / max(np.linalg.norm(away), 1e-9) * 17
             offset = (d[0], -d[1])
         label.xyann = offset
         visible = bool(
@@ -745,7 +751,7 @@ def _drag_line_names(ax_s, line_pts) -> None:
     """The points A..D on the source picture's diagonal, with their names."""
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
     # centred across the line, clear of its halo: below it, but D above it (below D is the frame)
-    across = 13 * _across(line_pts)
+    across = 16 * _across(line_pts)
     for name, p in zip("ABCD", line_pts, strict=True):
         ax_s.annotate(
             name,
@@ -822,7 +828,7 @@ def drag_homography() -> Demo:
     ax_s, ax_t = view.fig.subplots(1, 2, width_ratios=[1, 1.6])
     _drag_axes(ax_s, ax_t, pic, out_hw)
     # Four collinear points on the picture's diagonal (their cross-ratio is the invariant).
-    line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [150.0, 115.0]])
+    line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [140.0, 107.5]])
     line_dense = line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0])
     square_dense = _dense_outline(SQUARE)
     _drag_line_names(ax_s, line_pts)
