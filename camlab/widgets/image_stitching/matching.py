@@ -29,7 +29,7 @@ from ..controls import log_slider, monospace
 
 # ----------------------------------------------------------------------------- matches
 
-MATCH_LINES = 100  # feature_matches draws at most about this many match lines
+MATCH_STRIDE = 4  # feature_matches draws 1 in 4 matches of each kind, at every setting
 
 
 @register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
@@ -39,9 +39,9 @@ def feature_matches() -> Demo:
     Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
     the true homography (green within 2 px, red otherwise:
     :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
-    but at most about :data:`MATCH_LINES` (100) are drawn
-    (:func:`camlab.plotting.stitching.thin_matches`): 1 in k of each kind, so the picture keeps
-    the true share of right matches.
+    only 1 in :data:`MATCH_STRIDE` (4) of each kind is drawn, at every setting
+    (:func:`camlab.plotting.stitching.thin_matches`), so the picture keeps the true share of
+    right matches and the number of lines drawn falls when matches fall.
 
     Returns
     -------
@@ -71,14 +71,16 @@ def feature_matches() -> Demo:
         feats[i].points,
         feats[i].sizes,
         color=palette.YELLOW,
-        path_effects=palette.halo(0.7, "black"),
+        alpha=0.45,  # faint: the match lines are the subject
+        linewidths=0.5,
     )
     draw_keypoints(
         ax,
         feats[j].points + [art["offset"], 0],
         feats[j].sizes,
         color=palette.YELLOW,
-        path_effects=palette.halo(0.7, "black"),
+        alpha=0.45,  # faint: the match lines are the subject
+        linewidths=0.5,
     )
     title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
@@ -87,13 +89,13 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        # at most about MATCH_LINES lines (the photos stay visible): 1 in k of each kind, so the
-        # drawn share of right matches is the true one
-        show, every = thin_matches(good, MATCH_LINES)
+        # a fixed 1 in MATCH_STRIDE of each kind (the photos stay visible): the drawn share of
+        # right matches is the true one, and fewer matches always draw fewer lines
+        show, every = thin_matches(good, every=MATCH_STRIDE)
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
-        thinned = f"1 in {every} of each colour drawn" if every > 1 else "all drawn"
+        thinned = f"1 in {every} of each colour drawn (red dashed)"
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
             f"of the true H), {nbad} wrong (red)\n{thinned}; yellow circles: SIFT keypoints, radius ~ their scale"
