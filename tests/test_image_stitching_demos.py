@@ -123,7 +123,7 @@ def image_fills_the_axes(d) -> bool:
     "name, control, values",
     [
         ("panorama_canvas", "reference", [0, 1, 2, 3]),
-        ("full_panorama", "projection", ["planar", "cylindrical"]),
+        ("full_panorama", "projection", ["planar", "cylindrical", "spherical"]),
         ("parallax_ghosting", "baseline", [0.0, 0.2, 0.4]),
     ],
 )

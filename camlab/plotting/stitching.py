@@ -183,9 +183,8 @@ def draw_keypoints(
     """
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
     s = 12.0 if sizes is None else np.clip(np.asarray(sizes, dtype=float), 2, 60) ** 2 / 4
-    return ax.scatter(
-        pts[:, 0], pts[:, 1], s=s, facecolors="none", edgecolors=color, linewidths=0.7, **kw
-    )
+    kw.setdefault("linewidths", 0.7)
+    return ax.scatter(pts[:, 0], pts[:, 1], s=s, facecolors="none", edgecolors=color, **kw)
 
 
 def draw_matches(
