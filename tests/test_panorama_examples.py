@@ -212,6 +212,6 @@ def test_canvas_previews_other_sizes_and_bad_sizes():
 
 def test_stitched_panoramas():
     pans = pe.stitched_panoramas()
-    assert sorted(pans) == ["cylindrical", "planar"]
+    assert sorted(pans) == ["cylindrical", "planar", "spherical"]
     assert pans["cylindrical"].panorama.shape[1] < pans["planar"].panorama.shape[1]
     assert all(r.unconnected == [] and r.panorama.shape[2] == 3 for r in pans.values())

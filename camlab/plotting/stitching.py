@@ -118,19 +118,23 @@ class Thinned(NamedTuple):
     every: int
 
 
-def thin_matches(good: np.ndarray, limit: int = 200) -> Thinned:
-    """Which matches to draw: at most about ``limit``, 1 in k of the right ones and 1 in k of the wrong ones.
+def thin_matches(good: np.ndarray, limit: int = 200, every: int | None = None) -> Thinned:
+    """Which matches to draw: 1 in k of the right ones and 1 in k of the wrong ones.
 
-    Both kinds are thinned by the same stride ``k = ceil(n / limit)`` (every match when
-    ``n <= limit``), so the share of right matches among the lines drawn equals their share
-    among all ``n`` matches, up to one line of each kind.
+    Both kinds are thinned by the same stride k, so the share of right matches among the
+    lines drawn equals their share among all ``n`` matches, up to one line of each kind. With
+    ``every`` given, k is that fixed stride, so the number of lines drawn rises and falls with
+    the number of matches (a demo that re-filters matches should fix it); otherwise
+    ``k = ceil(n / limit)`` (every match when ``n <= limit``), at most about ``limit`` lines.
 
     Parameters
     ----------
     good : (n,) array_like of bool
         True where a match is right.
     limit : int, optional
-        The most lines to draw (each kind may round up by one).
+        The most lines to draw (each kind may round up by one); ignored when ``every`` is given.
+    every : int or None, optional
+        A fixed stride k (1: draw all).
 
     Returns
     -------
@@ -139,9 +143,17 @@ def thin_matches(good: np.ndarray, limit: int = 200) -> Thinned:
         the wrong ones) and ``every``, the stride k (1: all drawn).
     """
     good = np.asarray(good, dtype=bool).ravel()
-    if limit < 1:
-        raise ValueError(f"thin_matches: limit must be a positive number of lines, got {limit}")
-    every = max(1, -(-len(good) // int(limit)))  # ceil(n / limit)
+    if every is not None:
+        if int(every) != every or every < 1:
+            raise ValueError(
+                f"thin_matches: every must be a whole stride of at least 1, got {every}; "
+                "pass 1 to draw every match"
+            )
+        every = int(every)
+    else:
+        if limit < 1:
+            raise ValueError(f"thin_matches: limit must be a positive number of lines, got {limit}")
+        every = max(1, -(-len(good) // int(limit)))  # ceil(n / limit)
     rank = np.where(good, np.cumsum(good), np.cumsum(~good)) - 1  # 0, 1, 2 ... within each kind
     return Thinned(rank % every == 0, every)
 
@@ -171,9 +183,8 @@ def draw_keypoints(
     """
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
     s = 12.0 if sizes is None else np.clip(np.asarray(sizes, dtype=float), 2, 60) ** 2 / 4
-    return ax.scatter(
-        pts[:, 0], pts[:, 1], s=s, facecolors="none", edgecolors=color, linewidths=0.7, **kw
-    )
+    kw.setdefault("linewidths", 0.7)
+    return ax.scatter(pts[:, 0], pts[:, 1], s=s, facecolors="none", edgecolors=color, **kw)
 
 
 def draw_matches(
@@ -185,7 +196,7 @@ def draw_matches(
     good: np.ndarray | None = None,
     gap: int = 8,
 ) -> dict:
-    """Show two images side by side with a line per match (green where ``good``, red elsewhere, on top).
+    """Show two images side by side with a line per match (green where ``good``, red dashed elsewhere, on top).
 
     Parameters
     ----------
@@ -231,6 +242,7 @@ def draw_matches(
         seg[~g],
         colors=palette.RED,
         linewidths=1.0,
+        linestyles=(0, (3, 1.5)),  # dashed: wrong tells from right without colour
         path_effects=[patheffects.withStroke(linewidth=1.8, foreground="black")],
         zorder=2.1,
     )

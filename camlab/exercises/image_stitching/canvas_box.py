@@ -299,6 +299,12 @@ _CANVAS_SLIPS = (
         "or the last partly covered column and row are cut off.",
     ),
     Mistake(
+        "shifted to the origin",
+        lambda s: None if np.allclose(s.expected[0], 0) else s.expected - s.expected[0],
+        "that is the box after the shift T (its minimum moved to (0, 0)); return the box of the warped corners "
+        "themselves, before any shift: a negative u_min or v_min is right (the canvas's T comes later, from it).",
+    ),
+    Mistake(
         "round outwards",
         lambda s: [
             np.array([np.ceil(s.corners.min(0)), np.floor(s.corners.max(0))]),
@@ -372,6 +378,7 @@ register_exercise(
             (_canvas_variant("truncated"), "truncate towards zero"),
             (_canvas_variant("truncated the whole box"), "cuts both ends"),
             (_canvas_variant("floor both"), "floored both ends"),
+            (_canvas_variant("shifted to the origin"), "after the shift T"),
             *(
                 (_canvas_variant(f"missing {c}"), f"leaves out the {c} corner")
                 for c in ("top-left", "top-right", "bottom-right", "bottom-left")

@@ -39,7 +39,7 @@ def _feather_cases():
 def _feather_diagnosis(args, got, expected) -> str:
     g = np.asarray(got, dtype=float)
     if g.shape != expected.shape:
-        return f"the weights should have the image's shape {expected.shape} (rows, columns), got {g.shape}."
+        return _feather_shape_hint(args[0], g.shape, expected.shape)
     if np.asarray(got).dtype.kind in "iub":
         return (
             f"your array has an integer dtype ({np.asarray(got).dtype}), so the half-pixel distances (u + 1/2, ...) "
@@ -74,6 +74,12 @@ def _feather_diagnosis(args, got, expected) -> str:
         return (
             "a far border in the wrong place, W and H swapped inside the far terms: the far borders are at u = W - 1/2 (W = shape[1], the columns) "
             "and v = H - 1/2 (H = shape[0], the rows), so the terms are W - 1/2 - u and H - 1/2 - v."
+        )
+    if np.allclose(g, _feather_flipped_far((h, w))):
+        return (
+            "the far terms' sign is flipped: you wrote u - (W - 1/2) (and v - (H - 1/2)), which is negative on "
+            "every pixel, so the minimum is always the far term. The distance to the far border is "
+            "(W - 1/2) - u: the border minus the pixel, as the near one is u - (-1/2)."
         )
     if np.allclose(g, expected - 0.5):
         return (
@@ -169,6 +175,26 @@ def _negative_hint(g: np.ndarray, shape) -> str:
     return f"a weight below 0 ({g.min():g} at row {r}, column {c}): " + "; ".join(where) + "."
 
 
+def _feather_shape_hint(shape, got: tuple, expected: tuple) -> str:
+    """The cause of a wrong result shape: a colour shape read from its end, or rows and columns swapped."""
+    start = f"the weights should have the image's shape {expected} (rows, columns), got {got}"
+    if len(shape) == 3 and got == tuple(shape[-2:]):
+        return (
+            f"{start}: the shape of a colour image is (h, w, 3) = {tuple(shape)}, so shape[-2:] is (w, 3), not "
+            "(h, w): take h, w = shape[:2]."
+        )
+    if got == expected[::-1]:
+        return f"{start}: rows and columns swapped; a shape is (h, w) = (rows, columns), so h, w = shape[:2]."
+    return start + "."
+
+
+def _feather_flipped_far(shape) -> np.ndarray:
+    """min(u + 1/2, u - (W - 1/2), ...): the far terms with their sign flipped (a slip: K12)."""
+    h, w = shape[:2]
+    u, v = np.arange(w, dtype=float), np.arange(h, dtype=float)[:, None]
+    return np.minimum(np.minimum(u + 0.5, u - w + 0.5), np.minimum(v + 0.5, v - h + 0.5))
+
+
 def _feather_swapped_far(shape) -> np.ndarray:
     """min(u + 1/2, H - 1/2 - u, v + 1/2, W - 1/2 - v): W and H swapped inside the far terms (a slip)."""
     h, w = shape[:2]
@@ -235,6 +261,11 @@ register_exercise(
             ),
             (lambda shape: st.feather_weights(shape) / st.feather_weights(shape).sum(), "sum to 1"),
             (_feather_swapped_far, "far border in the wrong place"),
+            (_feather_flipped_far, "far terms' sign is flipped"),
+            (
+                lambda shape: st.feather_weights(tuple(shape[-2:])),
+                "shape[-2:] is (w, 3)",
+            ),
             (lambda shape: st.feather_weights(shape).astype(int), "integer dtype"),
             (
                 lambda shape: st.feather_weights(shape) / st.feather_weights(shape).max(),

@@ -117,7 +117,20 @@ def _focal_cases():
         if seed is not None:
             H = H * (1 + 1e-9 * np.random.default_rng(seed).standard_normal((3, 3)))
         out.append((H * (-3.7 if len(out) == 1 else 1.0), (h, w)))
+    out.append((_not_a_rotation(), (480, 640)))
     return out
+
+
+def _not_a_rotation():
+    """The last test input: a shift over a flat map with a little shear and perspective, no camera turn.
+
+    On its centred H all four formulas give f^2 < 0 (-3.6e5 to -2.4e6 px^2), so the right answer is
+    (NaN, NaN), as section 8's near-translations must cast no vote. A student who silences NaN with
+    sqrt(|f^2|) returns finite numbers here, and that ``abs`` can hide a sign flip on the turns above.
+    """
+    C = np.array([[1.0, 0, 319.5], [0, 1, 239.5], [0, 0, 1]])
+    Hc = np.array([[1.01, 0.06, -55.0], [-0.07, 1.01, 66.0], [7e-5, -6e-5, 1.0]])
+    return C @ Hc @ np.linalg.inv(C)
 
 
 def _focal_uncentred(H, shape):
@@ -242,9 +255,34 @@ def _same_focal(got, expected) -> bool:
     method that weighs every condition (a search for the f's that make K_to^-1 H K_from a rotation).
     """
     pair = _focal_pair(got)
-    return pair is not None and all(
-        np.isfinite(g) and abs(g / e - 1) < 1e-5 for g, e in zip(pair, expected, strict=True)
+    return pair is not None and all(_same_one(g, e) for g, e in zip(pair, expected, strict=True))
+
+
+def _same_one(g: float, e: float) -> bool:
+    """One focal: NaN where the right answer is NaN (no rotation fits), else within 1e-5."""
+    if np.isnan(e):
+        return bool(np.isnan(g))
+    return bool(np.isfinite(g) and abs(g / e - 1) < 1e-5)
+
+
+def _no_rotation_hint(H, shape, g: float, which: str, keys) -> str:
+    """The cause of a number where no rotation fits (every formula's f^2 < 0), so NaN is right."""
+    f2 = _focal_formulas(H, shape, squared=True)
+    f2 = {k: f2[k] for k in keys}
+    listed = ", ".join(f"{k} {v:.3g}" for k, v in f2.items())
+    start = (
+        f"{which}: you returned {g:.6g} px for an H that is no rotation (a shift over a flat map with a little "
+        f"shear and perspective): on it every formula gives f^2 < 0 ({listed} px^2), so no focal fits and the "
+        "right answer is NaN (section 8's near-translations must not vote). "
     )
+    absolute = _focal_formulas(H, shape, absolute=True)
+    if np.isfinite(g) and any(np.isclose(g, absolute[k], rtol=1e-6) for k in keys):
+        return start + (
+            "You took sqrt(|f^2|): abs() silences the NaN, and on a rotation it also hides a sign flip (a formula "
+            "without its minus gives -f^2, and abs turns it back). Return NaN where f^2 <= 0, and check the minus "
+            "in -(h0 h1 + h3 h4) / (h6 h7) and -h2 h5 / (h0 h3 + h1 h4)."
+        )
+    return start + "Return NaN where the formula with the larger denominator gives f^2 <= 0."
 
 
 def _focal_slip(slip: str):
@@ -551,9 +589,11 @@ def _focal_diagnosis(args, got, expected) -> str:
     if shape_hint:
         return shape_hint
     pair = _focal_pair(got)
-    j = 0 if not (np.isfinite(pair[0]) and abs(pair[0] / expected[0] - 1) < 1e-5) else 1
+    j = 0 if not _same_one(pair[0], float(expected[0])) else 1
     keys, which = (_ROWS, "f_from (the rows)") if j == 0 else (_COLUMNS, "f_to (the columns)")
     g, e = pair[j], float(expected[j])
+    if np.isnan(e):
+        return _no_rotation_hint(H, shape, g, which, keys)
     if np.isfinite(g) and np.isclose(g, e**2, rtol=1e-3):
         return f"{which} is f squared: the formulas give f^2; take the square root."
     h, w = shape[:2]
@@ -603,6 +643,20 @@ def _focal_diagnosis(args, got, expected) -> str:
 def _one_focal(H, shape):
     """A student who keeps the old single-focal answer: the median of both f's."""
     return float(np.nanmedian(focal_from_rotation_homography(H, shape)))
+
+
+def _abs_student(slip: str = ""):
+    """The prompt's rule with sqrt(|f^2|) where f^2 < 0 (K12's student), with an optional ``slip``."""
+
+    def student(H, shape):
+        f2 = _focal_formulas(H, shape, slip, absolute=True, squared=True)
+        out = []
+        for keys in (_ROWS, _COLUMNS):
+            v = f2[_decides(H, shape, keys)]
+            out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
+        return tuple(out)
+
+    return student
 
 
 def _flipped(formula: str):
@@ -660,6 +714,11 @@ register_exercise(
             (_larger_denominator_student("", orthogonality_only=True), "0/0"),
             (_larger_denominator_student("", equal_length_only=True), "0/0"),
             (_slipped_student(""), "f^2 > 0"),  # median of both formulas of each pair
+            (_abs_student(), "abs() silences the NaN"),
+            (
+                _abs_student("sign"),
+                "hides a sign flip",
+            ),  # passes every rotation: only the last input shows it
         ),
         teaching=focal_from_rotation_homography,
     )

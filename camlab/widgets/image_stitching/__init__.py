@@ -16,11 +16,11 @@ from .canvas import (
     panorama_canvas,
     parallax_ghosting,
 )
-from .matching import MATCH_LINES, feature_matches, ransac_registration
+from .matching import MATCH_STRIDE, feature_matches, ransac_registration
 
 __all__ = [
     "BOX",
-    "MATCH_LINES",
+    "MATCH_STRIDE",
     "blending_seams",
     "canvas_projections",
     "feature_matches",

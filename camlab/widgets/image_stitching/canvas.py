@@ -393,11 +393,14 @@ def blending_seams() -> Demo:
 # ----------------------------------------------------------------------------- full panorama
 
 
-@register(lesson="09", sweep={"projection": ["planar", "cylindrical"], "outlines": [True, False]})
+@register(
+    lesson="09",
+    sweep={"projection": ["planar", "cylindrical", "spherical"], "outlines": [True, False]},
+)
 def full_panorama() -> Demo:
-    """The four-image panorama, planar or cylindrical, multi-band blended, with each image's footprint.
+    """The four-image panorama, planar, cylindrical or spherical, multi-band blended, with each image's footprint.
 
-    Each panorama is scaled to fill the picture (the title gives its size in pixels). Both
+    Each panorama is scaled to fill the picture (the title gives its size in pixels). All three
     are stitched once by :func:`camlab.stitching.stitch`
     (:func:`camlab.fixtures.panorama_examples.stitched_panoramas`); the side panel lists
     every registered pair with its matches, inliers and verdict.
@@ -405,7 +408,7 @@ def full_panorama() -> Demo:
     Returns
     -------
     Demo
-        The demo: controls ``projection`` (``"planar"`` or ``"cylindrical"``) and
+        The demo: controls ``projection`` (``"planar"``, ``"cylindrical"`` or ``"spherical"``) and
         ``outlines`` (draw each view's footprint and its key), the figure (the panorama
         scaled to fit, the footprints, and a title with the size, the reference view and
         the display scale) and ``state`` (``projection``, ``shape`` the panorama's
@@ -466,7 +469,7 @@ def full_panorama() -> Demo:
 
     controls = {
         "projection": W.Dropdown(
-            options=["planar", "cylindrical"], value="planar", description="projection"
+            options=["planar", "cylindrical", "spherical"], value="planar", description="projection"
         ),
         "outlines": W.Checkbox(value=True, description="image outlines"),
     }
@@ -615,11 +618,23 @@ EDGE_RGB = tuple(
 
 
 def _with_edges(rgba: np.ndarray, edges) -> np.ndarray:
-    """Paint view 0's edges blue and view 1's orange (white where both) onto an RGBA image."""
+    """Paint view 0's edges blue and view 1's orange (white where both) onto an RGBA image.
+
+    The blend under them is turned to a dimmed grey and every edge gets a one-pixel black rim,
+    so blue reads on the portrait's blue backdrop and white on the bright wall (K12).
+    """
     if edges is None:
         return rgba
+    from scipy import ndimage
+
     out = rgba.copy()
     e0, e1 = edges
+    grey = out[..., :3].astype(float).mean(axis=2, keepdims=True)
+    out[..., :3] = np.rint(60 + 0.5 * grey).astype(
+        out.dtype
+    )  # 60-188: no colour left to hide an edge
+    rim = ndimage.binary_dilation(e0 | e1) & ~(e0 | e1)
+    out[rim, :3] = 0
     out[e0 & ~e1, :3] = EDGE_RGB[0]
     out[e1 & ~e0, :3] = EDGE_RGB[1]
     out[e0 & e1, :3] = 255

@@ -29,29 +29,32 @@ from ..controls import log_slider, monospace
 
 # ----------------------------------------------------------------------------- matches
 
-MATCH_LINES = 100  # feature_matches draws at most about this many match lines
+MATCH_STRIDE = 4  # feature_matches draws 1 in 4 matches of each kind, at every setting
 
 
-@register(lesson="09", sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False]})
+@register(
+    lesson="09",
+    sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False], "keypoints": [True, False]},
+)
 def feature_matches() -> Demo:
     """SIFT matches between views 0 and 1: loosen the ratio test and watch wrong matches (red) appear.
 
     Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
     the true homography (green within 2 px, red otherwise:
     :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
-    but at most about :data:`MATCH_LINES` (100) are drawn
-    (:func:`camlab.plotting.stitching.thin_matches`): 1 in k of each kind, so the picture keeps
-    the true share of right matches.
+    only 1 in :data:`MATCH_STRIDE` (4) of each kind is drawn, at every setting
+    (:func:`camlab.plotting.stitching.thin_matches`), so the picture keeps the true share of
+    right matches and the number of lines drawn falls when matches fall.
 
     Returns
     -------
     Demo
         The demo: controls ``ratio`` (the ratio-test threshold r of
-        :func:`camlab.features.filter_matches`) and ``mutual`` (keep only mutual nearest
-        neighbours), the figure (both views side by side with their keypoints and the
+        :func:`camlab.features.filter_matches`), ``mutual`` (keep only mutual nearest
+        neighbours) and ``keypoints`` (draw the SIFT keypoints, off at first), the figure (both views side by side with their keypoints and the
         matches) and ``state`` (``matches`` the matches kept, ``wrong`` those the truth
         rejects, ``precision`` the share that is right, NaN without matches, ``drawn_right``
-        and ``drawn_wrong`` the green and red lines drawn).
+        and ``drawn_wrong`` the green and red lines drawn, ``keypoints_drawn`` the circles shown).
 
     References
     ----------
@@ -63,23 +66,21 @@ def feature_matches() -> Demo:
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
-    # the images and keypoints stay, only the lines move; red over green (draw_matches' z-order),
-    # in a redraw and a live frame
+    # the images stay, only the lines (and the keypoints' visibility) change; red over green
+    # (draw_matches' z-order), in a redraw and a live frame
     view.animate(art["good"], art["bad"])
-    draw_keypoints(
-        ax,
-        feats[i].points,
-        feats[i].sizes,
-        color=palette.YELLOW,
-        path_effects=palette.halo(0.7, "black"),
-    )
-    draw_keypoints(
-        ax,
-        feats[j].points + [art["offset"], 0],
-        feats[j].sizes,
-        color=palette.YELLOW,
-        path_effects=palette.halo(0.7, "black"),
-    )
+    kps = [
+        draw_keypoints(
+            ax,
+            feats[k].points + [off, 0],
+            feats[k].sizes,
+            color=palette.YELLOW,
+            linewidths=0.4,  # thin: the match lines are the subject
+            path_effects=palette.halo(0.4, "black"),
+        )
+        for k, off in ((i, 0), (j, art["offset"]))
+    ]
+    view.animate(*kps)  # shown only when asked (K12: 1900 circles hid the lines)
     title = view.animate(ax.set_title(" ", fontsize=9))
     readout = W.HTML()
 
@@ -87,16 +88,19 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        # at most about MATCH_LINES lines (the photos stay visible): 1 in k of each kind, so the
-        # drawn share of right matches is the true one
-        show, every = thin_matches(good, MATCH_LINES)
+        # a fixed 1 in MATCH_STRIDE of each kind (the photos stay visible): the drawn share of
+        # right matches is the true one, and fewer matches always draw fewer lines
+        show, every = thin_matches(good, every=MATCH_STRIDE)
+        for kp in kps:
+            kp.set_visible(bool(v["keypoints"]))
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
-        thinned = f"1 in {every} of each colour drawn" if every > 1 else "all drawn"
+        thinned = f"1 in {every} of each colour drawn (red dashed)"
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
-            f"of the true H), {nbad} wrong (red)\n{thinned}; yellow circles: SIFT keypoints, radius ~ their scale"
+            f"of the true H), {nbad} wrong (red)\n{thinned}"
+            + ("; yellow circles: SIFT keypoints, radius ~ their scale" if v["keypoints"] else "")
         )
         state.update(
             matches=n,
@@ -104,6 +108,7 @@ def feature_matches() -> Demo:
             precision=(n - nbad) / n if n else float("nan"),
             drawn_right=int((good & show).sum()),
             drawn_wrong=int((~good & show).sum()),
+            keypoints_drawn=sum(len(f.points) for f in feats[: j + 1]) if v["keypoints"] else 0,
         )
         readout.value = monospace(
             f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
@@ -114,6 +119,7 @@ def feature_matches() -> Demo:
     controls = {
         "ratio": slider(0.75, 0.4, 1.0, 0.01, "ratio test r"),
         "mutual": W.Checkbox(value=False, description="mutual check"),
+        "keypoints": W.Checkbox(value=False, description="keypoints"),
     }
     return build_demo(
         "feature_matches", controls, view, update, title="Feature matching", extra=[readout]
