@@ -505,7 +505,10 @@ def _demosaic_readout(truth, out, reference, crop, method: str) -> str:
 CROP = 48
 ZOOM_MAX = SIZE[0] - CROP  # the zoom's last column at the frame's last column
 ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
-ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim above it, the cheek
+ZOOM_U, ZOOM_V = (
+    200,
+    0,
+)  # the default zoom: the cap's badge, where zipper and false colour show at first sight
 
 
 def _demosaic_controls() -> dict:
@@ -525,7 +528,7 @@ def _demosaic_controls() -> dict:
         ),
         "method": W.Dropdown(options=list(_METHODS), value="camlab bilinear", description="method"),
         "zoom_u": W.IntSlider(
-            value=120, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True
+            value=ZOOM_U, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True
         ),
         "zoom_v": W.IntSlider(
             value=ZOOM_V, min=0, max=ZOOM_V_MAX, description="zoom at v", continuous_update=True
@@ -543,7 +546,11 @@ def _demosaic_figure(view: FigureView) -> SimpleNamespace:
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
     truth = render.render(
-        fixtures.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2
+        fixtures.photo_and_page(linear=True, downsample=2),
+        K_DEMOSAIC,
+        SIZE,
+        color=True,
+        background=0.2,
     ).irradiance
     im_raw = images.show_image(
         ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom, through sRGB)"
@@ -553,7 +560,7 @@ def _demosaic_figure(view: FigureView) -> SimpleNamespace:
         ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)"
     )
     box = images.zoom_box(
-        ax_full, 120, ZOOM_V, CROP, color="white"
+        ax_full, ZOOM_U, ZOOM_V, CROP, color="white"
     )  # white on a black outline: seen on the red stripes too
     box.set_path_effects(palette.halo(1.5, "black"))
     box.set_clip_on(
