@@ -353,7 +353,10 @@ def test_sensor_demos_show_what_they_claim():
     b = digital_sensor.bit_depth_and_noise()
     ax_img, ax_p = b.figure.axes[:2]
     # the row is marked by ticks beside the image (round 5: a line over it hid the very row the profile shows)
-    assert not ax_img.lines and list(ax_img.get_yticks()) == [150]
+    # (F12-11: and short bars inside both edges, clear of the profiled pixels between them)
+    assert list(ax_img.get_yticks()) == [150] and len(ax_img.lines) == 1
+    marks = np.asarray(ax_img.lines[0].get_xdata(), float)
+    assert np.nanmax(marks[:2]) < 30 and np.nanmin(marks[3:]) > digital_sensor.SIZE[0] - 30
     # no legend over the profile: the title names the lines, and the truth is drawn wide beneath the recording
     assert (
         ax_p.get_legend() is None

@@ -399,16 +399,14 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     row = 150
     # the row marked by ticks on the image's left and right edges, not by a line over the very row the profile shows
     ax_img.set_yticks([row], [""])  # the profile's title names the row
-    # long ticks pointing into the image from both edges: seen at once, clear of the profile's label
+    # the row marked by ticks outside both edges and short bars inside them (animated: drawn over the image), not by
+    # a line over the very row the profile shows
     ax_img.tick_params(
-        axis="y",
-        colors=palette.BLUE,
-        direction="in",
-        length=22,
-        width=2.5,
-        left=True,
-        right=True,
-        labelsize=9,
+        axis="y", colors=palette.BLUE, length=9, width=2.5, left=True, right=True, labelsize=9
+    )
+    inside = [-0.5, 24, np.nan, SIZE[0] - 24.5, SIZE[0] - 0.5]
+    (row_marks,) = ax_img.plot(
+        inside, [row] * 5, color=palette.BLUE, lw=2.5, solid_capstyle="butt", zorder=3
     )
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
@@ -419,7 +417,7 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("sRGB value, as shown (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
-    view.animate(im, prof, ax_p.title)
+    view.animate(im, row_marks, prof, ax_p.title)
     return SimpleNamespace(clean=clean, im=im, prof=prof, ax_p=ax_p, row=row)
 
 
