@@ -406,7 +406,13 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     )
     inside = [-0.5, 24, np.nan, SIZE[0] - 24.5, SIZE[0] - 0.5]
     (row_marks,) = ax_img.plot(
-        inside, [row] * 5, color=palette.BLUE, lw=2.5, solid_capstyle="butt", zorder=3
+        inside,
+        [row] * 5,
+        color=palette.BLUE,
+        lw=2.5,
+        solid_capstyle="butt",
+        zorder=3,
+        path_effects=palette.halo(2.5),
     )
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
