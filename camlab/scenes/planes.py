@@ -315,6 +315,7 @@ def photo_plane(
     t: ArrayLike = (0, 0, 0),
     name: str = "photo",
     linear: bool = False,
+    downsample: int = 1,
 ) -> Plane:
     """A centred rectangle showing matplotlib's bundled Grace Hopper photograph.
 
@@ -333,13 +334,33 @@ def photo_plane(
         The plane's name.
     linear : bool
         Decode the photograph to linear reflectance.
+    downsample : int
+        Average each ``downsample x downsample`` block of the photograph (in linear light when
+        ``linear``) into one texel. At 2 this undoes the JPEG's 2 x 2 chroma subsampling and
+        averages away its 8 x 8 block artefacts, so a rendered image of the plane can stand as a
+        clean full-colour truth (lesson 03's demosaicing).
 
     Returns
     -------
     Plane
         An RGB plane with the photograph's aspect.
     """
-    return textured_plane(_linear_portrait() if linear else portrait(), width, R=R, t=t, name=name)
+    if not isinstance(downsample, (int, np.integer)) or downsample < 1:
+        raise CamlabInputError(
+            f"photo_plane: downsample must be a whole number >= 1, got {downsample!r}; "
+            "pass 1 for the photograph as it is, 2 to average 2 x 2 blocks"
+        )
+    return textured_plane(_portrait(bool(linear), int(downsample)), width, R=R, t=t, name=name)
+
+
+@lru_cache(maxsize=4)
+def _portrait(linear: bool, downsample: int) -> np.ndarray:
+    img = _linear_portrait() if linear else portrait()
+    if downsample == 1:
+        return img
+    h, w = (n // downsample * downsample for n in img.shape[:2])
+    blocks = img[:h, :w].reshape(h // downsample, downsample, w // downsample, downsample, 3)
+    return as_texture(blocks.mean(axis=(1, 3)))
 
 
 @lru_cache(maxsize=1)

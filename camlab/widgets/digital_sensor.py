@@ -65,7 +65,22 @@ def _side_view(fig):
             [x_centre], [3.45]
         )  # just above the plane, each on a leader down to its point on it
         principal.set_data([0], [3.45])
-        leaders.set_data([x_centre, x_centre, np.nan, 0, 0], [3, 3.45, np.nan, 3, 3.45])
+        leaders.set_data(  # the × and + up to their marks; each end's label on a short leader from its end
+            [
+                x_centre,
+                x_centre,
+                np.nan,
+                0,
+                0,
+                np.nan,
+                x_left,
+                x_left - 0.3,
+                np.nan,
+                x_right,
+                x_right + 0.3,
+            ],
+            [3, 3.45, np.nan, 3, 3.45, np.nan, 3, 2.6, np.nan, 3, 2.6],
+        )
         left_label.set_position((x_left - 0.3, 2.6))
         right_label.set_position((x_right + 0.3, 2.6))
 
@@ -248,8 +263,8 @@ def sampling_aliasing():
     )
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
-    # short dashes with long gaps: the fold's grey ring systems, centred on the square's sides, show between them;
-    # a white halo keeps the red dashes visible on the black rings of the aliased pattern
+    # thin, half-transparent short dashes with long gaps: the fold's grey ring systems, centred on the square's
+    # sides, show between and through them
     nyq = ax_s.add_patch(
         Rectangle(
             (0, 0),
@@ -258,8 +273,8 @@ def sampling_aliasing():
             fill=False,
             color=palette.RED,
             ls=(0, (4, 5)),
-            lw=2.0,
-            path_effects=palette.halo(2.0),
+            lw=1.2,
+            alpha=0.7,
         )
     )
     # pixel sizes that do not divide 384 leave a strip unsampled: grey, no sample's black or white
@@ -328,12 +343,38 @@ UNIFORM = slice(100, 140)  # where the profile row crosses the dark uniform
 
 
 def _noise_controls() -> dict:
-    """The controls of :func:`bit_depth_and_noise`: bit depth, exposure and read noise."""
+    """The controls of :func:`bit_depth_and_noise`: bit depth, exposure, ISO gain and read noise."""
     return {
         "bits": int_slider(4, 1, 12, "bit depth"),
         "exposure": log_slider(0.3, 0.01, 1.0, 0.05, "exposure (x full well)"),
+        "iso": log_slider(3.0, 1.0, 16.0, 0.05, "ISO gain (x base)"),
         "read_noise": slider(5.0, 0.0, 40.0, 1.0, "read noise (electrons)"),
     }
+
+
+def analogue_gain(iso: float, bits: int, full_well: float = 10000.0) -> float:
+    """The analogue gain a camera applies before its converter: the ISO gain, capped at 1 e-/DN.
+
+    The converter's full scale is ``full_well / gain`` electrons, so one DN is
+    ``full_well / (gain (2**bits - 1))`` electrons. Beyond 1 electron per DN every electron
+    already has its own code, so cameras stop amplifying there (higher ISOs only multiply the
+    numbers afterwards, which adds no information).
+
+    Parameters
+    ----------
+    iso : float
+        The ISO setting over the base ISO (1 at base).
+    bits : int
+        The converter's bit depth.
+    full_well : float
+        The full-well capacity, electrons.
+
+    Returns
+    -------
+    float
+        ``min(iso, full_well / (2**bits - 1))``.
+    """
+    return float(min(iso, full_well / (2**bits - 1)))
 
 
 def _noise_figure(view: FigureView) -> SimpleNamespace:
@@ -358,8 +399,20 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     row = 150
     # the row marked by ticks on the image's left and right edges, not by a line over the very row the profile shows
     ax_img.set_yticks([row], [""])  # the profile's title names the row
+    # the row marked by ticks outside both edges and short bars inside them (animated: drawn over the image), not by
+    # a line over the very row the profile shows
     ax_img.tick_params(
         axis="y", colors=palette.BLUE, length=9, width=2.5, left=True, right=True, labelsize=9
+    )
+    inside = [-0.5, 24, np.nan, SIZE[0] - 24.5, SIZE[0] - 0.5]
+    (row_marks,) = ax_img.plot(
+        inside,
+        [row] * 5,
+        color=palette.BLUE,
+        lw=2.5,
+        solid_capstyle="butt",
+        zorder=3,
+        path_effects=palette.halo(2.5),
     )
     # the truth wide and pale beneath, the recording thin on top: both stay visible where they agree;
     # the title names them, so no legend covers the profile
@@ -370,7 +423,7 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     ax_p.set_xlabel("u (px)")
     ax_p.set_ylabel("sRGB value, as shown (1: the photo's white)")
     ax_p.set_title("", fontsize=9)
-    view.animate(im, prof, ax_p.title)
+    view.animate(im, row_marks, prof, ax_p.title)
     return SimpleNamespace(clean=clean, im=im, prof=prof, ax_p=ax_p, row=row)
 
 
@@ -379,6 +432,7 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     sweep={
         "bits": [1, 3, 8, 12],
         "exposure": [0.01, 0.02, 0.3, 1.0],
+        "iso": [1.0, 16.0],
         "read_noise": [0.0, 20.0, 40.0],
     },
 )
@@ -388,11 +442,12 @@ def bit_depth_and_noise():
     Returns
     -------
     Demo
-        The demo: controls ``bits`` (bit depth), ``exposure`` (a fraction of the full well) and
-        ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
+        The demo: controls ``bits`` (bit depth), ``exposure`` (the light at the photo's white, a
+        fraction of the full well), ``iso`` (the gain over base ISO, applied before the converter up
+        to 1 e-/DN, :func:`analogue_gain`) and ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
         the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` the recorded
         image's rms difference from the true one, linear, over the whole frame, as a fraction of white, ``electrons`` of the white, the dark uniform and the background,
-        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``snr_background`` the model's and the
+        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``shown_row`` its recording as the profile shows it (sRGB), ``codes`` how many codes the frame uses, ``gain`` the analogue gain, ``snr_background`` the model's and the
         measured SNR in the grey background, inf where 90 % or more of it has one code, and
         ``background_one_code`` that share).
     """
@@ -405,19 +460,20 @@ def bit_depth_and_noise():
 
     def update(values, state):
         bits, expo = int(values["bits"]), float(values["exposure"])
-        # one noise field per (exposure, read noise): moving only the bit depth changes only the rounding
+        gain = analogue_gain(float(values["iso"]), bits, full_well)
+        # one noise field per (exposure, read noise): moving only the bit depth or the ISO changes only the rounding
         rng = np.random.default_rng([round(expo * 1e6), round(float(values["read_noise"]) * 1e3)])
         noisy = sensor.add_noise(
             clean * expo, sensor.NoiseModel(full_well, values["read_noise"]), rng
         )
-        dn = sensor.quantise(np.clip(noisy / expo, 0, 1), bits)  # shown with gain 1 / exposure
-        shown = sensor.dequantise(dn, bits)
+        # the converter's full scale is full_well / gain electrons; the display then pushes the photo's
+        # white to 1 (digitally, after the rounding: it adds no codes), unless the white already saturates
+        dn = sensor.quantise(np.clip(noisy * gain, 0, 1), bits)
+        shown = np.clip(sensor.dequantise(dn, bits) / min(1.0, gain * expo), 0, 1)
         im.set_data(sensor.gamma_encode(shown))
         prof.set_ydata(sensor.gamma_encode(shown[row]))
         signal = 0.5 * expo * full_well
-        step = (
-            full_well * expo / (2**bits - 1)
-        )  # one DN in electrons: the gain g of section 3 at this exposure
+        step = full_well / gain / (2**bits - 1)  # one DN in electrons: section 3's g at this gain
         snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + step**2 / 12)
         # measured where the truth is flat, the grey background: mean over spread, against the model there
         n_bg, flat = BACKGROUND * expo * full_well, shown[clean == BACKGROUND]
@@ -440,6 +496,9 @@ def bit_depth_and_noise():
             electrons=electrons,
             dn_electrons=step,
             clean_row=clean[row],
+            shown_row=sensor.gamma_encode(shown[row]),
+            codes=int(np.unique(dn).size),
+            gain=gain,
             snr_background=(float(model_bg), measured_bg),
             background_one_code=one_code,
         )
@@ -451,7 +510,10 @@ def bit_depth_and_noise():
             fontsize=9,
         )
         readout.value = monospace(
-            f"{2**bits} levels\nmodel SNR {snr:.1f} at half of white\n"
+            f"{2**bits} levels; analogue gain {gain:.2f}"
+            + (" (capped: 1 e-/DN)" if gain < float(values["iso"]) else "")
+            + f", full scale {full_well / gain:.0f} e-\n"
+            f"model SNR {snr:.1f} at half of white\n"
             f"grey background: model SNR {model_bg:.1f}, measured "
             + (
                 f"-- ({np.floor(1e4 * one_code) / 100:.2f} % on one code: banding, not noise)"
@@ -505,7 +567,10 @@ def _demosaic_readout(truth, out, reference, crop, method: str) -> str:
 CROP = 48
 ZOOM_MAX = SIZE[0] - CROP  # the zoom's last column at the frame's last column
 ZOOM_V_MAX = SIZE[1] - CROP  # the zoom's bottom row at the frame's last row
-ZOOM_V = 100  # the default zoom: the flag's stripes, the spectacles' lower rim above it, the cheek
+ZOOM_U, ZOOM_V = (
+    200,
+    0,
+)  # the default zoom: the cap's badge, where zipper and false colour show at first sight
 
 
 def _demosaic_controls() -> dict:
@@ -525,7 +590,7 @@ def _demosaic_controls() -> dict:
         ),
         "method": W.Dropdown(options=list(_METHODS), value="camlab bilinear", description="method"),
         "zoom_u": W.IntSlider(
-            value=120, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True
+            value=ZOOM_U, min=0, max=ZOOM_MAX, description="zoom at u", continuous_update=True
         ),
         "zoom_v": W.IntSlider(
             value=ZOOM_V, min=0, max=ZOOM_V_MAX, description="zoom at v", continuous_update=True
@@ -543,7 +608,11 @@ def _demosaic_figure(view: FigureView) -> SimpleNamespace:
     ax_raw, ax_full, ax_zoom = view.fig.subplots(1, 3, width_ratios=[0.75, 1, 0.75])
     # linear light (the photo's JPEG values decoded), as a sensor records it; every panel is shown through sRGB
     truth = render.render(
-        fixtures.photo_and_page(linear=True), K_DEMOSAIC, SIZE, color=True, background=0.2
+        fixtures.photo_and_page(linear=True, downsample=2),
+        K_DEMOSAIC,
+        SIZE,
+        color=True,
+        background=0.2,
     ).irradiance
     im_raw = images.show_image(
         ax_raw, np.zeros((CROP, CROP, 3)), "Bayer mosaic (zoom, through sRGB)"
@@ -553,7 +622,7 @@ def _demosaic_figure(view: FigureView) -> SimpleNamespace:
         ax_zoom, sensor.gamma_encode(truth[:CROP, :CROP]), "zoom (shown through sRGB)"
     )
     box = images.zoom_box(
-        ax_full, 120, ZOOM_V, CROP, color="white"
+        ax_full, ZOOM_U, ZOOM_V, CROP, color="white"
     )  # white on a black outline: seen on the red stripes too
     box.set_path_effects(palette.halo(1.5, "black"))
     box.set_clip_on(

@@ -69,6 +69,22 @@ _ALIAS_SLIPS = (
         ),
     ),
     Mistake(
+        "clipped at the limit",
+        lambda f: np.minimum(np.abs(f) % 1, 0.5),
+        (
+            "you clipped at the limit (min(a, 1/2)) instead of folding about it: a frequency above 1/2 is "
+            "not stopped there but mirrored, so 0.8 shows as 1 - 0.8 = 0.2, not 0.5; take min(a, 1 - a)"
+        ),
+    ),
+    Mistake(
+        "the distance to the limit",
+        lambda f: np.abs(np.asarray(f) % 1 - 0.5),
+        (
+            "you returned the distance to the limit, |a - 1/2| with a = f % 1, which is 1/2 minus the answer "
+            "(0.2 gives 0.3): the answer is the distance to the nearest whole cycle, min(a, 1 - a)"
+        ),
+    ),
+    Mistake(
         "radians",
         lambda f: 2 * np.pi * sensor.alias_frequency(f),
         (
@@ -111,6 +127,17 @@ def _alias_diagnosis(args, got, expected) -> str:
     return "f and f + 1 give the same samples, and so do f and 1 - f: a = f % 1, then min(a, 1 - a)"
 
 
+def _alias_exception_hint(exc: Exception, args: tuple) -> str:
+    """The likely cause when the student's function raises: scalar code (``if f > 0.5``) on an array."""
+    if isinstance(exc, ValueError) and "truth value of an array" in str(exc):
+        return (
+            "f is an array, and `if`/`while` on a comparison of an array (f > 0.5) has no one "
+            "answer; use element-wise numpy (`%`, `np.abs`, `np.minimum`, `np.where`), or wrap your "
+            "one-number function in np.vectorize"
+        )
+    return ""
+
+
 def alias_frequency(f):
     """The frequency in [0, 1/2] that a cosine of f cycles per pixel shows once sampled at every pixel.
 
@@ -143,6 +170,8 @@ register_exercise(
             (lambda f: np.minimum(f, 1 - np.asarray(f)), "did not wrap first"),
             (lambda f: np.asarray(f) % 1, "did not fold"),
             (lambda f: np.asarray(f) % 0.5, "aliasing mirrors about it"),
+            (lambda f: np.minimum(np.abs(f) % 1, 0.5), "instead of folding about it"),
+            (lambda f: np.abs(np.asarray(f) % 1 - 0.5), "the distance to the limit"),
             (lambda f: np.minimum(np.fmod(f, 1), 1 - np.fmod(f, 1)), "keep the sign of f"),
             (lambda f: np.asarray(f) - np.round(f), "its absolute value"),
             (lambda f: np.minimum(np.asarray(f) % 2, 2 - np.asarray(f) % 2), "the limit is half"),
@@ -155,6 +184,7 @@ register_exercise(
             (lambda f: np.array([min(x % 1, 1 - x % 1) for x in np.ravel(f)]), "f's shape"),
         ),
         teaching=alias_frequency,
+        exception_hint=_alias_exception_hint,
         ndarray_only=True,  # the prompt asks for a numpy array, as exercises 1 and 2 do
     )
 )

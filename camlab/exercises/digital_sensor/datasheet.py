@@ -9,6 +9,7 @@ import numpy as np
 from ... import sensor
 from .._answers import SameArray, Tolerance, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
+from ._datasheet_slips import AXIS_AND_SIGN_SLIPS
 
 # -- intrinsics_from_datasheet -----------------------------------------------------------------
 
@@ -271,6 +272,7 @@ _MISTAKES = (
             f"s_x = width / W and s_y = height / H, each from its own axis"
         ),
     ),
+    *AXIS_AND_SIGN_SLIPS,
     Mistake(
         "width over H",
         lambda s: (
@@ -479,6 +481,16 @@ register_exercise(
         diagnose=_datasheet_diagnosis,
         ndarray_only=True,  # the prompt asks for a numpy array, as every other matrix exercise does
         wrong_variants=(
+            (
+                lambda f, s, n: _datasheet_variant(
+                    f, s, n, fx=f * n[0] / np.hypot(*s), fy=f * n[1] / np.hypot(*s)
+                ),
+                "the diagonal belongs to neither axis",
+            ),
+            (
+                lambda f, s, n: _datasheet_variant(f, s, n, cx=-(n[0] - 1) / 2),
+                "sign flipped",
+            ),
             (
                 lambda f, s, n: _datasheet_variant(f, s, n, cx=s[0] / 2, cy=s[1] / 2),
                 "in pixels, not millimetres",

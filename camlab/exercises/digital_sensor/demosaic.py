@@ -140,6 +140,15 @@ def _nan_hint(raw, pattern, got) -> str | None:
 
 _IMAGE_MISTAKES = (
     Mistake(
+        "pattern ignored",
+        lambda s: s.pattern != "RGGB" and np.allclose(s.g, sensor.demosaic_bilinear(s.raw, "RGGB")),
+        lambda s: (
+            f"your image is the RGGB one, but this mosaic's pattern is {s.pattern}: you ignored `pattern` "
+            f"(masks built for RGGB whatever it says); build each colour's mask from the letters, "
+            f"the colour of pattern[0] at m[0::2, 0::2], pattern[1] at m[0::2, 1::2], and so on"
+        ),
+    ),
+    Mistake(
         "pattern read column by column",
         lambda s: (
             s.column_major != s.pattern
@@ -519,6 +528,7 @@ register_exercise(
         exception_hint=_demosaic_exception_hint,
         ndarray_only=True,
         wrong_variants=(
+            (lambda raw, pattern: sensor.demosaic_bilinear(raw, "RGGB"), "you ignored `pattern`"),
             (_zero_padded_demosaic, "border"),
             (lambda raw, pattern: opencv_demosaic(raw, pattern[::-1]), "an old Bayer name"),
             (

@@ -1,0 +1,42 @@
+"""Two more slips of lesson 03's datasheet exercise (reviews G12-8, F12-7), rows of its mistake table.
+
+Each row reads the context :mod:`.datasheet` builds: ``g`` the answer, ``f_mm``, ``w_mm``, ``h_mm``,
+``W``, ``H``, ``cx``, ``cy``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._core import Mistake
+
+
+def _near(a, b):
+    """Equal to rounding (the check's own tolerance is 1e-9)."""
+    return np.isclose(a, b, rtol=1e-6, atol=1e-9)
+
+
+AXIS_AND_SIGN_SLIPS = (
+    Mistake(
+        "the diagonal over W and over H",
+        lambda s: (
+            _near(s.g[0, 0], s.f_mm * s.W / np.hypot(s.w_mm, s.h_mm))
+            and _near(s.g[1, 1], s.f_mm * s.H / np.hypot(s.w_mm, s.h_mm))
+        ),
+        lambda s: (
+            f"you divided the sensor's diagonal ({np.hypot(s.w_mm, s.h_mm):.2f} mm) by W and by H: each pitch is "
+            f"its own axis's length over its own pixel count, s_x = width / W = {s.w_mm / s.W * 1e3:.4g} µm and "
+            f"s_y = height / H = {s.h_mm / s.H * 1e3:.4g} µm; the diagonal belongs to neither axis"
+        ),
+    ),
+    Mistake(
+        "principal point with its sign flipped",
+        lambda s: (_near(s.g[0, 2], -s.cx) or _near(s.g[1, 2], -s.cy)) and s.cx > 0,
+        (
+            "the principal point has its sign flipped: c_x = -(W - 1) / 2 would put the image centre left of "
+            "pixel 0. u counts from the top-left pixel's centre, so the centre sits at +(W - 1) / 2, "
+            "+(H - 1) / 2"
+        ),
+    ),
+)
+"""The diagonal divided by each axis's pixel count; the principal point with its sign flipped."""
