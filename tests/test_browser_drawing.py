@@ -9,6 +9,7 @@ benchmarks/browser_latency.py carries the real figures.
 """
 
 import json
+import os
 import statistics
 import sys
 from pathlib import Path
@@ -32,6 +33,7 @@ BROWSER_DEMOS = {
     "parallel_lines": "infinity",
     "cross_ratio_invariance": "cross-ratio",
     "vanishing_points": "horizon",
+    "conic_under_homography": "ellipse",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
@@ -84,6 +86,16 @@ def drawn_as_matplotlib_draws_it(name: str, live: np.ndarray, values: dict) -> f
     return float(close[moving].mean())
 
 
+def snapshot(name: str, live: np.ndarray) -> None:
+    """Save the canvas as ``<name>.png`` in $CAMLAB_BROWSER_SNAPSHOTS, when set (to look at it)."""
+    folder = os.environ.get("CAMLAB_BROWSER_SNAPSHOTS")
+    if folder:
+        from PIL import Image
+
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        Image.fromarray(live).save(Path(folder) / f"{name}.png")
+
+
 def write_notebook(path: Path, names) -> None:
     """A notebook showing each named demo live."""
     import nbformat
@@ -105,12 +117,27 @@ def playwright():
         yield p
 
 
+def selected_demos(session) -> list[str]:
+    """The browser-drawn demos the selected tests of this module use (all of them in a full run).
+
+    ``-k conic`` then starts a notebook of one demo, not of all: each demo's cell costs the lab
+    a few seconds.
+    """
+    names = set()
+    for item in session.items:
+        if item.module.__name__ != __name__ or "lab_page" not in item.fixturenames:
+            continue
+        callspec = getattr(item, "callspec", None)
+        names.add(callspec.params["name"] if callspec else "similar_triangles")  # the drag test
+    return [name for name in BROWSER_DEMOS if name in names]
+
+
 @pytest.fixture(scope="module")
-def lab_page(playwright, tmp_path_factory):
-    """One JupyterLab and one Chromium page showing every browser-drawn demo, all cells run."""
+def lab_page(playwright, tmp_path_factory, request):
+    """One JupyterLab and one Chromium page showing the selected browser-drawn demos, all cells run."""
     tmp = tmp_path_factory.mktemp("browser_drawing")
     (tmp / "root").mkdir()
-    write_notebook(tmp / "root" / "drawing.ipynb", BROWSER_DEMOS)
+    write_notebook(tmp / "root" / "drawing.ipynb", selected_demos(request.session))
     with browser.jupyterlab(tmp / "root", tmp) as lab:
         context = browser.launch(playwright, lab["profile"])
         try:
@@ -169,6 +196,8 @@ def test_a_browser_drawn_demo_answers_a_keydown_within_50_ms_as_matplotlib_draws
     assert before != after, "the canvas looks the same after the slider moved"
     live = np.array(data, dtype=np.uint8).reshape(height, width, 4)
     share = drawn_as_matplotlib_draws_it(name, live, values)
+    print(json.dumps({"demo": name, "values": values, "share": round(share, 4)}))
+    snapshot(name, live)
     assert share >= 0.95, (
         f"{name} at {values}: the browser's moving artists match matplotlib's on {share:.0%} of their pixels"
     )

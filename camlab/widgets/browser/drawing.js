@@ -255,3 +255,21 @@ export function plus(ctx, at, style) {
   ctx.stroke();
   ctx.restore();
 }
+
+// matplotlib's "x" marker at canvas point `at`: two diagonal strokes across a square style.size px
+// wide, style.width wide (the "+" marker turned by 45 degrees and stretched to the square's corners).
+export function times(ctx, at, style) {
+  if (!Number.isFinite(at[0]) || !Number.isFinite(at[1])) return;
+  const h = style.size / 2;
+  ctx.save();
+  ctx.strokeStyle = style.color;
+  ctx.lineWidth = style.width;
+  ctx.lineCap = "butt";
+  ctx.beginPath();
+  ctx.moveTo(at[0] - h, at[1] - h);
+  ctx.lineTo(at[0] + h, at[1] + h);
+  ctx.moveTo(at[0] - h, at[1] + h);
+  ctx.lineTo(at[0] + h, at[1] - h);
+  ctx.stroke();
+  ctx.restore();
+}

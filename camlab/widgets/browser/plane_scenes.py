@@ -14,11 +14,12 @@ import numpy as np
 from matplotlib.colors import to_hex
 
 from . import line_style, marker_style, text_lines, text_style, to_canvas_pixels
-from .scenes import arrow_style, axes_box
+from .scenes import arrow_style, axes_box, cross_marker_style
 
 __all__ = [
     "boxed_text_scene",
     "collection_style",
+    "conic_scene",
     "cross_ratio_scene",
     "duality_scene",
     "parallel_scene",
@@ -282,5 +283,37 @@ def vanishing_scene(art: Mapping[str, Any], world: Mapping[str, Any]) -> dict:
             vz=marker_style(art["vz_dot"], pt),
             vx=marker_style(art["vx_dot"], pt),
             note=text_scene(art["note"]),
+        ),
+    )
+
+
+def conic_scene(parts: Any) -> dict:
+    """What ``projective_plane.js`` needs to draw ``conic_under_homography`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    parts : namespace
+        The figure's parts (``_conic_figure``): ``ax_b``, ``ax_a`` (before and after, drawn once),
+        ``samples`` ((8, 2) points on the unit circle) and the moving artists ``to_infinity``,
+        ``conic``, ``tangents``, ``centre_image`` ("+"), ``centre_conic`` ("x"), ``mapped`` (a
+        scatter) and ``text`` (the caption).
+
+    Returns
+    -------
+    dict
+        The scene (JSON).
+    """
+    pt = parts.ax_a.figure.dpi / 72.0
+    return dict(
+        panels=[plane_panel(parts.ax_b), plane_panel(parts.ax_a)],
+        samples=np.asarray(parts.samples, dtype=float).tolist(),
+        styles=dict(
+            toInfinity=line_style(parts.to_infinity, pt),
+            conic=line_style(parts.conic, pt),
+            tangent=line_style(parts.tangents[0], pt),
+            centreImage=cross_marker_style(parts.centre_image, pt),
+            centreConic=cross_marker_style(parts.centre_conic, pt),
+            mapped=scatter_style(parts.mapped, pt),
+            caption=text_scene(parts.text),
         ),
     )

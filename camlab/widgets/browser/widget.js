@@ -4,7 +4,7 @@ import { drawStackCheck } from "./stack_check.js";
 import { drawSimilarTriangles, dragSimilarTriangles } from "./similar_triangles.js";
 import { drawThreeCameras } from "./three_cameras.js";
 import { drawDollyZoom } from "./dolly_zoom.js";
-import { drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
+import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
 // `drag(scene, [u, v])`, where a demo takes the mouse, turns a press or drag at figure pixel (u, v)
@@ -18,6 +18,7 @@ const SCENES = {
   parallel_lines: { draw: drawParallelLines },
   cross_ratio_invariance: { draw: drawCrossRatio },
   vanishing_points: { draw: drawVanishingPoints },
+  conic_under_homography: { draw: drawConic },
 };
 
 // A press, and a move with the button held, on the canvas set the parameters the demo's drag names.
