@@ -872,3 +872,130 @@ export function conicCaption(g, h31, h32) {
     `max |l'ᵀC*'l'| over the 4 tangents ${formatExp0(g.tangentResidual)}`
   );
 }
+
+// ---- lesson 11: epipolar lines ------------------------------------------------------------------
+
+const K800 = [[800, 0, 319.5], [0, 800, 239.5], [0, 0, 1]];
+
+// Twin: camlab.fixtures.lessons._camera_800(R, eye): 640 x 480, f = 800 px, {K, R, t = -R eye}.
+function camera800(R, eye) {
+  return { K: K800, R, t: R.map((row) => -dot3(row, eye)) };
+}
+
+function lookingAhead(eye) {
+  return lookAt(eye, [eye[0] + 0, eye[1] + 1, eye[2] + 0]); // look_at_rotation(eye, eye + [0, 1, 0])
+}
+
+// Twin: camlab.fixtures.stereo_pair(baseline, toe_in): two cameras baseline m apart along x, 1 m
+// up, looking along +y, each turned toe_in / 2 (radians) towards the other about its own y axis
+// (rotation_from_axis_angle([0, turn, 0]) is rotationY(turn)).
+export function stereoPair(baseline, toeIn) {
+  return [[[-baseline / 2, 0, 1], -toeIn / 2], [[baseline / 2, 0, 1], toeIn / 2]].map(
+    ([eye, turn]) => camera800(matmul(rotationY(turn), lookingAhead(eye)), eye),
+  );
+}
+
+// Twin: camlab.fixtures.forward_pair(baseline, turn): the second camera baseline m ahead (+y) of the
+// first, turned by `turn` radians about its y axis.
+export function forwardPair(baseline, turn) {
+  const eye1 = [0, -1, 1], eye2 = [0, -1 + baseline, 1];
+  return [camera800(lookingAhead(eye1), eye1), camera800(matmul(rotationY(turn), lookingAhead(eye2)), eye2)];
+}
+
+// Twin: camlab.widgets.epipolar_twins.MOTIONS: the camera pairs by the names the demo's buttons show.
+export const MOTIONS = { "sideways (stereo rig)": stereoPair, "forward (driving)": forwardPair };
+
+// Twin: Camera.centre: -R^T t.
+export function cameraCentre(cam) {
+  return [0, 1, 2].map((j) => -cam.R.reduce((s, row, i) => s + row[j] * cam.t[i], 0));
+}
+
+// Twin: camlab.epipolar.normalise_fundamental(F): unit Frobenius norm, the largest entry (rounded to
+// 1e-9; the first in row-major order on a tie) positive.
+export function normaliseFundamental(F) {
+  const n = frobenius(F);
+  const a = F.flat().map((v) => v / n);
+  let k = 0;
+  a.forEach((v, i) => { if (Math.round(Math.abs(v) * 1e9) > Math.round(Math.abs(a[k]) * 1e9)) k = i; });
+  const s = Math.sign(a[k]);
+  return [0, 1, 2].map((i) => a.slice(3 * i, 3 * i + 3).map((v) => v * s));
+}
+
+function skew([x, y, z]) {
+  return [[0, -z, y], [z, 0, -x], [-y, x, 0]];
+}
+
+// Twin: camlab.epipolar.fundamental_from_cameras(c1, c2) for two cameras: K2^-T [t]x R K1^-1 with
+// the relative pose R = R2 R1^T, t = t2 - R t1, normalised (normaliseFundamental).
+export function fundamentalFromCameras(c1, c2) {
+  const R = matmul(c2.R, transpose(c1.R));
+  const t = c2.t.map((v, i) => v - dot3(R[i], c1.t));
+  return normaliseFundamental(matmul(matmul(matmul(transpose(inv3(c2.K)), skew(t)), R), inv3(c1.K)));
+}
+
+// Twin: camlab.epipolar.epipolar_lines(F, points, image=1): l' = F x, a^2 + b^2 = 1; a NaN row for
+// a point at the epipole (|(a, b)| <= 1e-9 |F| |x|).
+export function epipolarLines(F, points) {
+  const nF = frobenius(F);
+  return points.map(([u, v]) => {
+    const l = apply(F, [u, v, 1]);
+    if (Math.hypot(l[0], l[1]) <= 1e-9 * nF * Math.hypot(u, v, 1)) return [NaN, NaN, NaN];
+    return normaliseLine(l);
+  });
+}
+
+// Twin: Camera.backproject(uv, depth): the world points at camera depth z along each pixel's ray,
+// R^T (z K^-1 (u, v, 1) - t).
+export function backproject(cam, uv, depths) {
+  const Kinv = inv3(cam.K);
+  return uv.map(([u, v], i) => {
+    const c = apply(Kinv, [u, v, 1]).map((x, k) => x * depths[i] - cam.t[k]);
+    return [0, 1, 2].map((j) => c.reduce((s, x, k) => s + x * cam.R[k][j], 0));
+  });
+}
+
+// Twin: camlab.widgets.epipolar_twins.line_polyline(lines, size): each line's ends on the image's
+// left and right edges (u = -0.5, w - 0.5) when mostly horizontal, else on its top and bottom, and
+// a NaN row after each.
+export function linePolyline(lines, size) {
+  const [w, h] = size;
+  return lines.flatMap(([a, b, c]) => {
+    if (Math.abs(b) >= Math.abs(a)) return [[-0.5, -(a * -0.5 + c) / b], [w - 0.5, -(a * (w - 0.5) + c) / b], [NaN, NaN]];
+    if (a !== 0) return [[-(b * -0.5 + c) / a, -0.5], [-(b * (h - 0.5) + c) / a, h - 0.5], [NaN, NaN]];
+    return [[NaN, NaN], [NaN, NaN], [NaN, NaN]];
+  });
+}
+
+// Twin: camlab.widgets.epipolar_twins.projected_segments(cam, segs): world segments as one
+// NaN-separated polyline of pixels (cameraProject: NaN for an end behind the camera).
+export function projectedSegments(cam, segs) {
+  return polylineData(segs.map((seg) => cameraProject(cam, seg)));
+}
+
+// Twin: camlab.widgets.epipolar_twins.DEPTHS: 1, ..., 6 m.
+export const DEPTHS = [1, 2, 3, 4, 5, 6];
+
+// Twin: camlab.widgets.epipolar_twins.epipolar_view(motion, baseline, toe_in_deg, point, ref): the
+// two cameras, F, the point's lines (l' = F x right, l = x x e left), the reference pixels' pencils
+// (NaN rows at the left epipole), the depth marks and the epipoles P C', P' C.
+export function epipolarView(motion, baseline, toeInDeg, point, ref) {
+  const pair = MOTIONS[motion];
+  if (!pair) throw new Error(`motion: expected one of ${Object.keys(MOTIONS)}, got ${motion}`);
+  const [c1, c2] = pair(baseline, (toeInDeg * Math.PI) / 180);
+  const F = fundamentalFromCameras(c1, c2);
+  const image = (cam, X) => apply(cam.K, cam.R.map((row, i) => dot3(row, X) + cam.t[i]));
+  const e1 = image(c1, cameraCentre(c2)), e2 = image(c2, cameraCentre(c1));
+  const pencilRight = epipolarLines(F, ref);
+  const pencilLeft = ref.map(([u, v], i) => (Number.isNaN(pencilRight[i][0]) ? [NaN, NaN, NaN] : cross([u, v, 1], e1)));
+  const ray = backproject(c1, DEPTHS.map(() => point), DEPTHS);
+  return {
+    cameras: [c1, c2],
+    F,
+    lineRight: epipolarLines(F, [point])[0],
+    lineLeft: cross([point[0], point[1], 1], e1),
+    pencilRight,
+    pencilLeft,
+    depthPoints: cameraProject(c2, ray),
+    epipoles: [e1, e2],
+  };
+}

@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import to_hex
 
-from . import line_style, marker_style, text_lines, text_style, to_canvas_pixels
-from .scenes import arrow_style, axes_box, cross_marker_style
+from . import line_style, marker_style, text_lines, text_style
+from .scenes import arrow_pointing_right, arrow_style, cross_marker_style, plane_panel
 
 __all__ = [
     "boxed_text_scene",
@@ -28,28 +28,6 @@ __all__ = [
     "text_scene",
     "vanishing_scene",
 ]
-
-
-def plane_panel(ax: Any) -> dict:
-    """One panel: its map to canvas pixels, its box (what its lines are clipped to) and its limits.
-
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes
-        The axes, after the figure's layout is fixed.
-
-    Returns
-    -------
-    dict
-        ``toPixels``, ``box`` (px), ``xlim`` and ``ylim`` (data units, low first: what
-        ``set_line`` clips an infinite line to).
-    """
-    return dict(
-        toPixels=to_canvas_pixels(ax),
-        box=axes_box(ax),
-        xlim=[float(c) for c in ax.get_xlim()],
-        ylim=sorted(float(c) for c in ax.get_ylim()),
-    )
 
 
 def text_scene(text: Any) -> dict:
@@ -268,14 +246,13 @@ def vanishing_scene(art: Mapping[str, Any], world: Mapping[str, Any]) -> dict:
     ax = art["ax"]
     pt = ax.figure.dpi / 72.0
     w, h = world["size"]
-    path = np.asarray(world["arrow"], dtype=float)[:-1]
     return dict(
         panel=plane_panel(ax),
         size=[int(w), int(h)],
         box=[[-0.5, w - 0.5], [-0.5, h - 0.5]],
         title=str(world["title"]),
         noteColor=to_hex(world["note_color"]),
-        arrow=np.column_stack([path[:, 1], -path[:, 0]]).tolist(),
+        arrow=arrow_pointing_right(world["arrow"]),
         styles=dict(
             gridZ=collection_style(art["grid_z"], pt),
             gridX=collection_style(art["grid_x"], pt),
