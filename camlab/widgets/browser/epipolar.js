@@ -3,7 +3,7 @@ import { arrowPlacement, epipolarView, linePolyline, mapPoints, projectedSegment
 // Lesson 11's epipolar_lines drawn in the browser: twin of camlab.widgets.stereo_rectification.epipolar_lines'
 // update (the arithmetic in camlab.widgets.epipolar_twins.epipolar_view, its twin epipolarView in
 // geometry.js); the readout stays the kernel's. A click or drag in the left image sets u and v.
-import { clipTo, dot, marker, pathMarker, polyline } from "./drawing.js";
+import { clipTo, dot, marker, onSlider, pathMarker, pixelsToData, polyline } from "./drawing.js";
 
 function finite(lines) {
   return lines.filter((l) => l.every(Number.isFinite));
@@ -53,14 +53,9 @@ export function drawEpipolarLines(ctx, scene, v) {
 
 // A press or drag in the left image: the pixel under the mouse, clipped to the sliders' ranges and
 // rounded to their steps (as the kernel's click handler sets them).
-export function dragEpipolarLines(scene, [u, v]) {
-  const panel = scene.panels[0], b = panel.box;
-  if (u < b.left || u > b.right || v < b.top || v > b.bottom) return null;
-  const T = panel.toPixels; // affine: invert its 2x2 part
-  const det = T[0][0] * T[1][1] - T[0][1] * T[1][0];
-  const du = u - T[0][2], dv = v - T[1][2];
-  const x = (T[1][1] * du - T[0][1] * dv) / det;
-  const y = (-T[1][0] * du + T[0][0] * dv) / det;
-  const put = (value, r) => Math.round(Math.min(r.max, Math.max(r.min, value)) / r.step) * r.step;
-  return { u: put(x, scene.ranges.u), v: put(y, scene.ranges.v) };
+export function dragEpipolarLines(scene, at) {
+  const panel = scene.panels[0];
+  const p = pixelsToData(panel.toPixels, panel.box, at);
+  if (!p) return null;
+  return { u: onSlider(p[0], scene.ranges.u), v: onSlider(p[1], scene.ranges.v) };
 }
