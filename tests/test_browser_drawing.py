@@ -9,6 +9,7 @@ benchmarks/browser_latency.py carries the real figures.
 """
 
 import json
+import os
 import statistics
 import sys
 from pathlib import Path
@@ -32,6 +33,8 @@ BROWSER_DEMOS = {
     "parallel_lines": "infinity",
     "cross_ratio_invariance": "cross-ratio",
     "vanishing_points": "horizon",
+    "conic_under_homography": "ellipse",
+    "epipolar_lines": "epipolar",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
@@ -84,6 +87,16 @@ def drawn_as_matplotlib_draws_it(name: str, live: np.ndarray, values: dict) -> f
     return float(close[moving].mean())
 
 
+def snapshot(name: str, live: np.ndarray) -> None:
+    """Save the canvas as ``<name>.png`` in $CAMLAB_BROWSER_SNAPSHOTS, when set (to look at it)."""
+    folder = os.environ.get("CAMLAB_BROWSER_SNAPSHOTS")
+    if folder:
+        from PIL import Image
+
+        Path(folder).mkdir(parents=True, exist_ok=True)
+        Image.fromarray(live).save(Path(folder) / f"{name}.png")
+
+
 def write_notebook(path: Path, names) -> None:
     """A notebook showing each named demo live."""
     import nbformat
@@ -105,12 +118,32 @@ def playwright():
         yield p
 
 
+def selected_demos(session) -> list[str]:
+    """The browser-drawn demos the selected tests of this module use (all of them in a full run).
+
+    ``-k conic`` then starts a notebook of one demo, not of all: each demo's cell costs the lab
+    a few seconds.
+    """
+    names = set()
+    for item in session.items:
+        if item.module.__name__ != __name__ or "lab_page" not in item.fixturenames:
+            continue
+        callspec = getattr(item, "callspec", None)
+        if callspec:
+            names.add(callspec.params["name"])
+        else:  # a drag test: its demo is named in it
+            names.update(
+                n for n in BROWSER_DEMOS if n in item.name or n in (item.function.__doc__ or "")
+            )
+    return [name for name in BROWSER_DEMOS if name in names]
+
+
 @pytest.fixture(scope="module")
-def lab_page(playwright, tmp_path_factory):
-    """One JupyterLab and one Chromium page showing every browser-drawn demo, all cells run."""
+def lab_page(playwright, tmp_path_factory, request):
+    """One JupyterLab and one Chromium page showing the selected browser-drawn demos, all cells run."""
     tmp = tmp_path_factory.mktemp("browser_drawing")
     (tmp / "root").mkdir()
-    write_notebook(tmp / "root" / "drawing.ipynb", BROWSER_DEMOS)
+    write_notebook(tmp / "root" / "drawing.ipynb", selected_demos(request.session))
     with browser.jupyterlab(tmp / "root", tmp) as lab:
         context = browser.launch(playwright, lab["profile"])
         try:
@@ -169,6 +202,8 @@ def test_a_browser_drawn_demo_answers_a_keydown_within_50_ms_as_matplotlib_draws
     assert before != after, "the canvas looks the same after the slider moved"
     live = np.array(data, dtype=np.uint8).reshape(height, width, 4)
     share = drawn_as_matplotlib_draws_it(name, live, values)
+    print(json.dumps({"demo": name, "values": values, "share": round(share, 4)}))
+    snapshot(name, live)
     assert share >= 0.95, (
         f"{name} at {values}: the browser's moving artists match matplotlib's on {share:.0%} of their pixels"
     )
@@ -180,6 +215,30 @@ def test_a_browser_drawn_demo_answers_a_keydown_within_50_ms_as_matplotlib_draws
     )
 
 
+def drag_on_canvas(page, name: str, axes: int, path) -> None:
+    """Press at the first data point of ``path`` in the demo's axes ``axes``, drag through the rest, release."""
+    from camlab.widgets import all_demos
+
+    scale, left, top = page.evaluate(
+        "(s) => { const c = document.querySelector(s); const r = c.getBoundingClientRect();"
+        " return [r.width / c.width * (window.devicePixelRatio || 1), r.left, r.top]; }",
+        f".{css(name)} {CANVAS}",
+    )
+    demo = all_demos()[name].builder()
+    ax = demo.figure.axes[axes]
+    height = demo.figure.bbox.height
+
+    def client(p) -> tuple[float, float]:
+        x, y = ax.transData.transform(p)
+        return left + x * scale, top + (height - y) * scale
+
+    page.mouse.move(*client(path[0]))
+    page.mouse.down()
+    for p in path[1:]:
+        page.mouse.move(*client(p), steps=4)
+    page.mouse.up()
+
+
 def test_a_drag_on_the_similar_triangles_canvas_moves_the_object_point_and_the_kernel_follows(
     lab_page,
 ):
@@ -187,27 +246,7 @@ def test_a_drag_on_the_similar_triangles_canvas_moves_the_object_point_and_the_k
     page = lab_page
     name = "similar_triangles"
     _shown(page, name)
-    scene_map = page.evaluate(
-        "(s) => { const c = document.querySelector(s); const r = c.getBoundingClientRect();"
-        " return [r.width / c.width * (window.devicePixelRatio || 1), r.left, r.top]; }",
-        f".{css(name)} {CANVAS}",
-    )
-    from camlab.widgets import all_demos
-
-    demo = all_demos()[name].builder()
-    ax = demo.figure.axes[0]
-    height = demo.figure.bbox.height
-
-    def client(z: float, up: float) -> tuple[float, float]:
-        x, y = ax.transData.transform((z, up))
-        return scene_map[1] + x * scene_map[0], scene_map[2] + (height - y) * scene_map[0]
-
-    start, end = client(2.0, 0.2), client(4.0, -0.5)
-    page.mouse.move(*start)
-    page.mouse.down()
-    page.mouse.move(*client(3.0, 0.0), steps=4)
-    page.mouse.move(*end, steps=4)
-    page.mouse.up()
+    drag_on_canvas(page, name, 0, [(2.0, 0.2), (3.0, 0.0), (4.0, -0.5)])
     page.wait_for_function(  # the kernel's readout (its <pre> is replaced on every update)
         "(s) => document.querySelector(s).textContent.includes('Y / Z = +0.125')",
         arg=f".{css(name)} pre",
@@ -219,6 +258,35 @@ def test_a_drag_on_the_similar_triangles_canvas_moves_the_object_point_and_the_k
     live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
     share = drawn_as_matplotlib_draws_it(name, live, values)
     assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
+
+
+def test_a_drag_in_the_left_image_moves_the_epipolar_point(lab_page):
+    """epipolar_lines takes the mouse in the browser as it took ipympl's click: u and v follow the drag."""
+    page = lab_page
+    name = "epipolar_lines"
+    _shown(page, name)
+    drag_on_canvas(page, name, 0, [(100.0, 100.0), (150.0, 120.0), (200.3, 150.4)])
+    page.wait_for_function(  # the sliders' readouts, set through their links
+        "(s) => { const r = document.querySelectorAll(s); return r.length > 1"
+        " && parseFloat(r[0].textContent) === 200 && parseFloat(r[1].textContent) === 150; }",
+        arg=f".{css(name)} .widget-readout",
+        polling=100,
+    )
+    values = slider_values(page, name)
+    assert (values["u"], values["v"]) == (200.0, 150.0), f"the drag left the sliders at {values}"
+    page.wait_for_timeout(300)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    share = drawn_as_matplotlib_draws_it(name, live, values)
+    assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
+    # the motion's buttons reach the canvas too (a choice: its index is linked, widget.js names it)
+    page.locator(f".{css(name)} button", has_text="forward (driving)").click()
+    page.wait_for_timeout(500)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_forward", live)
+    share = drawn_as_matplotlib_draws_it(name, live, dict(values, motion="forward (driving)"))
+    assert share >= 0.95, f"in forward motion the canvas matches matplotlib's on {share:.0%}"
 
 
 def test_stack_check_is_drawn_in_the_browser_in_the_lecture_mode(playwright, tmp_path):

@@ -237,3 +237,116 @@ def test_the_vanishing_points_arithmetic_equals_the_demo():
     ]
     assert not wrong and any(not v for _, v in titles), f"horizon notes differ: {wrong[:3]}"
     print(f"vanishing_points: worst relative error {worst:.2e}")
+
+
+def _random_ellipses(rng: np.random.Generator, n: int) -> list[np.ndarray]:
+    """Conics of real ellipses at any scale and sign, with the circles the demo reaches (exact and turned)."""
+    out = []
+    for _ in range(n):
+        a = rng.normal(size=(2, 2))
+        A = a @ a.T + 0.1 * np.eye(2)
+        x0 = rng.normal(size=2)
+        b = -A @ x0
+        C = np.block([[A, b[:, None]], [b[None, :], np.array([[x0 @ A @ x0 - 1.0]])]])
+        out.append(C * rng.choice([-1.0, 1.0]) * rng.uniform(0.01, 100))
+    for angle in (0.0, 20.0, 45.0, -33.0):  # a circle turned: its 2 x 2 block I up to round-off
+        H = twins.conic_homography(angle, 1.0, 0.0, 0.0)
+        out.append(pj.map_conic(H, pj.circle_conic([0.0, 0.0], 1.0)))
+    return out
+
+
+def test_the_conic_points_are_canonical_and_equal_camlab():
+    rng = np.random.default_rng(66)
+    conics = _random_ellipses(rng, CASES)
+    hyperbola = pj.conic_matrix(1, 0, -1, 0, 0, -1)
+    calls = [("conicPoints", [C.tolist(), 50]) for C in conics]
+    calls += [("conicPoints", [hyperbola.tolist(), 5])]
+    out = run_js(calls)
+    worst = max(
+        assert_twins(js, pj.conic_points(C, 50), "conicPoints")
+        for js, C in zip(out[:-1], conics, strict=True)
+    )
+    assert np.isnan(np.asarray(out[-1], dtype=float)).all(), "a hyperbola was drawn as an ellipse"
+    print(f"conicPoints: worst relative error {worst:.2e}")
+
+
+def _conic_settings(rng: np.random.Generator) -> list[tuple[float, float, float, float]]:
+    """The demo's slider values: random on its steps, and the settings the lesson names."""
+    random = zip(
+        np.round(rng.uniform(-45, 45, CASES)),
+        np.round(rng.uniform(0.6, 1.4, CASES) * 20) / 20,
+        np.round(rng.uniform(-0.35, 0.35, CASES) * 100) / 100,
+        np.round(rng.uniform(-0.35, 0.35, CASES) * 100) / 100,
+        strict=True,
+    )
+    named = [
+        (20, 1.4, 0.3, 0.15),
+        (0, 1, 0, 0),
+        (30, 1, 0, 0),
+        (0, 0.95, 0.31, 0),
+        (-45, 0.6, -0.35, 0.35),
+    ]
+    return [tuple(float(x) for x in s) for s in [*random, *named]]
+
+
+def test_the_conic_arithmetic_and_caption_equal_the_demo():
+    rng = np.random.default_rng(67)
+    settings = _conic_settings(rng)
+    t = np.linspace(0, 2 * np.pi, 9)[:-1]
+    samples = np.stack([np.cos(t), np.sin(t)], axis=1)  # the demo's 8 points
+    Hs = [twins.conic_homography(*s) for s in settings]
+    C = pj.circle_conic([0.0, 0.0], 1.0)
+    lines = rng.normal(size=(5, 3))
+    symmetric = [M + M.T for M in rng.normal(size=(CASES, 3, 3))]
+    calls = [("conicHomography", list(s)) for s in settings]
+    calls += [("mapConic", [H.tolist(), C.tolist()]) for H in Hs]
+    calls += [("mapDualConic", [H.tolist(), pj.dual_conic(C).tolist()]) for H in Hs]
+    calls += [("mapLines", [H.tolist(), lines.tolist()]) for H in Hs]
+    calls += [("dualConic", [M.tolist()]) for M in symmetric]
+    calls += [("conicGeometry", [*s, samples.tolist()]) for s in settings]
+    out = iter(run_js(calls))
+    worst = max(assert_twins(next(out), H, "conicHomography") for H in Hs)
+    for H in Hs:
+        worst = max(worst, assert_twins(next(out), pj.map_conic(H, C), "mapConic"))
+    for H in Hs:
+        py = pj.map_dual_conic(H, pj.dual_conic(C))
+        worst = max(worst, assert_twins(next(out), py, "mapDualConic"))
+    for H in Hs:
+        worst = max(worst, assert_twins(next(out), pj.map_lines(H, lines), "mapLines"))
+    for M in symmetric:
+        worst = max(worst, assert_twins(next(out), pj.dual_conic(M), "dualConic"))
+    captions, fixed = [], 0
+    for s in settings:
+        js, py = next(out), twins.conic_geometry(*s, samples)
+        for key, name in (("H", "H"), ("CMapped", "C_mapped"), ("mapped", "mapped")):
+            worst = max(worst, assert_twins(js[key], getattr(py, name), f"conicGeometry {key}"))
+        for key, name in (
+            ("tangents", "tangents"),
+            ("axisRatio", "axis_ratio"),
+            ("centre", "centre"),
+        ):
+            worst = max(worst, assert_twins(js[key], getattr(py, name), f"conicGeometry {key}"))
+        worst = max(
+            worst,
+            assert_twins(js["IMapped"], np.stack([py.I_mapped.real, py.I_mapped.imag], 1), "H I"),
+        )
+        assert js["fixed"] == py.fixed, (
+            f"conicGeometry{s}: fixes I? JS {js['fixed']}, numpy {py.fixed}"
+        )
+        fixed += py.fixed
+        # the residuals are round-off (about 1e-16): equal within 1e-14, not to 1e-9 of themselves
+        for key, name in (("residual", "residual"), ("tangentResidual", "tangent_residual")):
+            assert abs(js[key] - getattr(py, name)) <= 1e-14, (key, js[key], getattr(py, name))
+        mine = py._replace(residual=js["residual"], tangent_residual=js["tangentResidual"])
+        captions.append((js, s, twins.conic_caption(mine, s[2], s[3])))
+    assert 0 < fixed < len(settings), "both a similarity and a non-similarity must be tried"
+    got = run_js([("conicCaption", [js, s[2], s[3]]) for js, s, _ in captions])
+    wrong = [(g, e) for g, (_, _, e) in zip(got, captions, strict=True) if g != e]
+    assert not wrong, f"JS and Python captions differ: {wrong[:3]}"
+    values = [
+        float(v) for v in np.concatenate([10.0 ** rng.uniform(-18, 3, 300), [0.0, 1.0, 9.6e-17]])
+    ]
+    exps = run_js([("formatExp0", [v]) for v in values])
+    wrong = [(v, e) for v, e in zip(values, exps, strict=True) if e != f"{v:.0e}"]
+    assert not wrong, f"JS and Python format .0e differently: {wrong[:5]}"
+    print(f"conic_under_homography: worst relative error {worst:.2e}")

@@ -46,6 +46,18 @@ def test_in_a_kernel_the_demo_shows_a_browser_canvas_with_the_scene(in_a_kernel)
     assert all(link.target[0] is canvas for link in demo.view.links)
 
 
+def test_a_choice_is_linked_by_its_index_and_the_scene_names_its_options(in_a_kernel):
+    """epipolar_lines' motion buttons: ToggleButtons sync their index, not their value."""
+    from camlab.widgets.stereo_rectification import epipolar_lines
+
+    demo = epipolar_lines()
+    canvas, buttons = demo.view.canvas, demo.controls["motion"]
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links["motion"] == (buttons, "index") and links["u"] == (demo.controls["u"], "value")
+    assert canvas.scene["choices"] == {"motion": list(buttons.options)}
+    assert canvas.motion == 0 and canvas.scene["choices"]["motion"][0] == buttons.value
+
+
 def test_the_scene_maps_data_to_the_pixels_matplotlib_draws(in_a_kernel):
     demo = stack_check()
     for panel, ax in zip(demo.view.canvas.scene["panels"], demo.figure.axes, strict=True):

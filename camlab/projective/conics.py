@@ -222,8 +222,15 @@ def conic_points(C: ArrayLike, n: int = 100) -> np.ndarray:
 
     Write :math:`C = \begin{pmatrix} A & b \\ b^T & c \end{pmatrix}`. The centre solves
     :math:`A x_0 = -b`, and about it :math:`x^T C x = (x - x_0)^T A (x - x_0) - k` with
-    :math:`k = b^T A^{-1} b - c`. With :math:`A = V \operatorname{diag}(\lambda_1, \lambda_2) V^T`,
-    the points :math:`x_0 + V (\sqrt{k/\lambda_1} \cos t, \sqrt{k/\lambda_2} \sin t)` lie on it.
+    :math:`k = b^T A^{-1} b - c`. With :math:`S` the symmetric square root of :math:`A` (positive
+    definite, :math:`S^2 = A`), the points :math:`x_0 + \sqrt{k}\, S^{-1} (\cos t, \sin t)` lie on
+    it: :math:`(x - x_0)^T A (x - x_0) = k\, u^T S^{-1} S^2 S^{-1} u = k`. For a 2 x 2 matrix
+    Cayley-Hamilton gives :math:`S` in closed form: :math:`S^2 - \operatorname{tr}(S) S + \det(S) I = 0`
+    with :math:`\det S = \sqrt{\det A} = s` and :math:`\operatorname{tr}(S)^2 = \operatorname{tr} A + 2 s`,
+    so :math:`S = (A + s I) / \sqrt{\operatorname{tr} A + 2 s}`. Unlike the principal axes (an
+    eigenvector's sign is free, and a circle has no axes at all), :math:`S` is a smooth function of
+    C: the same C gives the same points wherever it is computed (the browser's twin,
+    ``conicPoints`` in camlab/widgets/browser/geometry.js, draws the very same points).
 
     Parameters
     ----------
@@ -255,9 +262,10 @@ def conic_points(C: ArrayLike, n: int = 100) -> np.ndarray:
     k = b @ np.linalg.solve(A, b) - c
     if k <= 0:
         raise DegenerateError("C: an imaginary or a point ellipse, with no real points to draw")
-    lam, V = np.linalg.eigh(A)
+    s = np.sqrt(np.linalg.det(A))
+    S = (A + s * np.eye(2)) / np.sqrt(np.trace(A) + 2 * s)  # S @ S = A
     t = np.linspace(0, 2 * np.pi, n)
-    return x0 + (np.stack([np.cos(t), np.sin(t)], axis=1) * np.sqrt(k / lam)) @ V.T
+    return x0 + np.sqrt(k) * np.linalg.solve(S, np.stack([np.cos(t), np.sin(t)])).T
 
 
 def line_angle(l1: ArrayLike, l2: ArrayLike, C_star: ArrayLike = DUAL_CONIC_AT_INFINITY) -> float:

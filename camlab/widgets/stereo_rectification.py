@@ -16,9 +16,9 @@ import numpy as np
 
 from .. import disparity as dp
 from .. import epipolar as ep
-from .. import fixtures, scenes
 from .. import rectification as rc
-from ..camera import Camera, scale_intrinsics
+from .. import scenes
+from ..camera import scale_intrinsics
 from ..fixtures.stereo import (
     bundled_rig,
     bundled_rig_calibration,
@@ -26,10 +26,13 @@ from ..fixtures.stereo import (
     stereo_scene,
 )
 from ..plotting import palette
-from ..plotting.plane import arrow_marker, arrow_to_infinity, image_axes
+from ..plotting.plane import ARROW_PATH, arrow_marker, arrow_to_infinity, image_axes
 from ..projective import map_points
 from ._base import Demo, FigureView, build_demo, register, slider
+from .browser import BrowserView
+from .browser.scenes import epipolar_scene
 from .controls import int_slider, monospace
+from .epipolar_twins import MOTIONS, epipolar_view, line_polyline, projected_segments
 
 SIZE = (640, 480)
 # the epipolar demo's fixed pixels (their epipolar lines drawn thin red): four near the corners, the centre
@@ -38,44 +41,12 @@ REF_PIXELS = np.array([[79.5, 59.5], [559.5, 99.5], [319.5, 239.5], [139.5, 419.
 
 # --------------------------------------------------------------------------- shared data
 
-_MOTIONS = {
-    "sideways (stereo rig)": fixtures.stereo_pair,
-    "forward (driving)": fixtures.forward_pair,
-}
-
-
-def _projected_segments(cam: Camera, segs: np.ndarray) -> np.ndarray:
-    """Segments as one NaN-separated polyline in pixels (for a single Line2D)."""
-    uv = cam.project(segs.reshape(-1, 3)).reshape(-1, 2, 2)
-    out = np.full((len(uv), 3, 2), np.nan)
-    out[:, :2] = uv
-    return out.reshape(-1, 2)
-
-
 HALF = scale_intrinsics(
     np.eye(3), 0.5
 )  # full-size pixels -> half-size pixels: u' = (u + 0.5) / 2 - 0.5
 
 
 # --------------------------------------------------------------------------- demo 1: epipolar lines
-
-
-def _line_polyline(lines: np.ndarray, size: tuple[int, int] = SIZE) -> np.ndarray:
-    """Lines (K, 3) as one NaN-separated polyline spanning the image (matplotlib clips the rest).
-
-    Mostly horizontal lines are evaluated at the left and right image edges, mostly
-    vertical ones at the top and bottom: v = -(a u + c) / b or u = -(b v + c) / a.
-    """
-    w, h = size
-    out = np.full((len(lines), 3, 2), np.nan)
-    for i, (a, b, c) in enumerate(lines):
-        if abs(b) >= abs(a):
-            u = np.array([-0.5, w - 0.5])
-            out[i, :2] = np.column_stack([u, -(a * u + c) / b])
-        elif a != 0:
-            v = np.array([-0.5, h - 0.5])
-            out[i, :2] = np.column_stack([-(b * v + c) / a, v])
-    return out.reshape(-1, 2)
 
 
 def _epipolar_legends(fig, depth_dots, epi_r) -> None:
@@ -251,7 +222,7 @@ def _epipolar_controls() -> dict:
         "baseline": slider(0.2, 0.02, 0.5, 0.01, "baseline (m)"),
         "toe_in": slider(10.0, -20.0, 20.0, 0.5, "toe-in, total / turn (deg)"),
         "motion": W.ToggleButtons(
-            options=list(_MOTIONS),
+            options=list(MOTIONS),
             value="sideways (stereo rig)",
             description="motion",
             style={"button_width": "150px"},
@@ -266,7 +237,7 @@ def _epipolar_controls() -> dict:
         "v": [100.0, 380.0],
         "baseline": [0.05, 0.4],
         "toe_in": [0.0, 15.0, -10.0],
-        "motion": list(_MOTIONS),
+        "motion": list(MOTIONS),
     },
 )
 def epipolar_lines() -> Demo:
@@ -285,7 +256,9 @@ def epipolar_lines() -> Demo:
         marks 1-6 m and the epipoles) and ``state`` (``F``, ``epipoles``, ``line_right`` l',
         ``depth_points`` in px, ``point``, ``epipole_inside``). ``handlers`` holds the click.
     """
-    view = FigureView(figsize=(9.4, 4.3))
+    view = BrowserView(
+        ("u", "v", "baseline", "toe_in", "motion"), figsize=(9.4, 4.3), choices=("motion",)
+    )
     segs = scenes.plane_outlines(stereo_scene())
     art = _epipolar_figure(view)
     axl, axr, shafts, heads = art.axl, art.axr, art.shafts, art.heads
@@ -295,37 +268,30 @@ def epipolar_lines() -> Demo:
     # through the centre, so in forward motion (epipole at the centre) they give four distinct lines
     ref = REF_PIXELS
     # the fixed pixels themselves, animated: the moving lines' halos would paint over a static marker
-    view.animate(axl.plot(*ref.T, "s", mfc="w", mec=palette.RED, mew=1.5, ms=6, zorder=4)[0])
+    (refs,) = axl.plot(*ref.T, "s", mfc="w", mec=palette.RED, mew=1.5, ms=6, zorder=4)
+    view.animate(refs)
 
     def update(v, state):
-        c1, c2 = _MOTIONS[v["motion"]](v["baseline"], np.deg2rad(v["toe_in"]))
-        F = ep.fundamental_from_cameras(c1, c2)
-        e = ep.epipoles(F)
         x = np.array([v["u"], v["v"]])
-        l2 = ep.epipolar_lines(F, x, image=1)
-        ray = c1.backproject(
-            np.tile(x, (6, 1)), np.arange(1.0, 7.0)
-        )  # world points that all image to x
-        uv = c2.project(ray)
-        l1 = np.cross(np.append(x, 1.0), e.e1)  # the left epipolar line: through x and the epipole
-        art.wl.set_data(*_projected_segments(c1, segs).T)
-        art.wr.set_data(*_projected_segments(c2, segs).T)
+        g = epipolar_view(v["motion"], v["baseline"], v["toe_in"], x, ref)
+        c1, c2 = g.cameras
+        F, l2, uv = g.F, g.line_right, g.depth_points
+        e = ep.epipoles(F)  # unit null vectors of F, for the state and the readout
+        art.wl.set_data(*projected_segments(c1, segs).T)
+        art.wr.set_data(*projected_segments(c2, segs).T)
         art.point.set_data([x[0]], [x[1]])
-        art.line_r.set_data(*_line_polyline(l2[None]).T)
-        art.line_l.set_data(*_line_polyline(l1[None]).T)
+        art.line_r.set_data(*line_polyline(l2[None]).T)
+        art.line_l.set_data(*line_polyline(g.line_left[None]).T)
         # a reference pixel at the left epipole (the centre, in forward motion) has no epipolar
         # line: epipolar_lines gives NaN there and the pencils skip it rather than draw noise
-        pencil_r = ep.epipolar_lines(F, ref, image=1)
-        on_epipole = np.isnan(pencil_r[:, 0])
-        pencil_l = np.cross(np.column_stack([ref, np.ones(len(ref))]), e.e1)
-        art.pencil_r.set_data(*_line_polyline(pencil_r[~on_epipole]).T)
-        art.pencil_l.set_data(*_line_polyline(pencil_l[~on_epipole]).T)
+        on_epipole = np.isnan(g.pencil_right[:, 0])
+        art.pencil_r.set_data(*line_polyline(g.pencil_right[~on_epipole]).T)
+        art.pencil_l.set_data(*line_polyline(g.pencil_left[~on_epipole]).T)
         state.update(pencil_skipped=ref[on_epipole])
         art.depth_dots.set_data(uv[:, 0], uv[:, 1])
         # the epipoles as the images of the other camera's centre, P' C and P C': the same points as
         # F's null vectors, with a sign that says on which side the other camera is (for w = 0 too)
-        e1_dir = c1.P @ np.append(c2.centre, 1.0)
-        e2_dir = c2.P @ np.append(c1.centre, 1.0)
+        e1_dir, e2_dir = g.epipoles
         _show_epipole(e1_dir, art.epi_l, shafts[0], heads[0], axl)
         _show_epipole(e2_dir, art.epi_r, shafts[1], heads[1], axr)
         inside = not arrow_to_infinity(e.e2, axr)[1].any()
@@ -352,6 +318,10 @@ def epipolar_lines() -> Demo:
     demo.handlers["button_press_event"] = (
         on_click  # tests call it with an object carrying inaxes, xdata, ydata
     )
+    world = dict(segments=segs, ref=ref, size=SIZE, arrow=ARROW_PATH)
+    view.publish(
+        demo, epipolar_scene(art, refs, world, demo.controls)
+    )  # the browser draws the moves
     return demo
 
 

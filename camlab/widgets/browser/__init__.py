@@ -57,6 +57,7 @@ MODULES = (
     "three_cameras.js",
     "dolly_zoom.js",
     "projective_plane.js",
+    "epipolar.js",
     "widget.js",
 )
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
@@ -88,20 +89,27 @@ class BrowserCanvas(anywidget.AnyWidget):
     alt = traitlets.Unicode("").tag(sync=True)
 
 
-def canvas_class(params: Sequence[str]) -> type[BrowserCanvas]:
-    """A :class:`BrowserCanvas` with one synced float trait per parameter the browser redraws on.
+def canvas_class(params: Sequence[str], choices: Sequence[str] = ()) -> type[BrowserCanvas]:
+    """A :class:`BrowserCanvas` with one synced trait per parameter the browser redraws on.
 
     Parameters
     ----------
     params : sequence of str
-        The control names whose values the browser needs (each is linked to its slider).
+        The control names whose values the browser needs (each is linked to its control): a float
+        trait each, for a slider.
+    choices : sequence of str
+        Those among ``params`` whose control is a choice (toggle buttons, a dropdown): an integer
+        trait each, linked to the control's ``index`` (its ``value`` is not synced to the browser).
 
     Returns
     -------
     type
         The canvas class.
     """
-    traits = {name: traitlets.Float(0.0).tag(sync=True) for name in params}
+    traits = {
+        name: (traitlets.Int(0) if name in choices else traitlets.Float(0.0)).tag(sync=True)
+        for name in params
+    }
     return type("BrowserCanvas_" + "_".join(params), (BrowserCanvas,), traits)
 
 
@@ -186,13 +194,19 @@ def _background_png(view: FigureView, scale: int = BACKGROUND_SCALE) -> str:
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
+def _option_values(control: Any) -> list:
+    """A choice control's option values, in order (an option may be a (label, value) pair)."""
+    return [o[1] if isinstance(o, tuple) else o for o in control.options]
+
+
 class BrowserView(FigureView):
     """A :class:`FigureView` whose live picture is drawn in the browser when a kernel shows it.
 
     The matplotlib figure is always an Agg figure, updated as in any demo; in a kernel the widget
     shown is a :class:`BrowserCanvas` instead of the figure, and the figure is drawn only when
     asked (:meth:`pixels`, the static PNG). Headless (no kernel), or with browser drawing switched
-    off (:func:`browser_drawing`), it is a plain FigureView in the display mode.
+    off (:func:`browser_drawing`), it is a plain FigureView in the display mode. ``params`` names
+    the controls the browser redraws on; ``choices``, those of them that are choices (buttons).
     """
 
     def __init__(
@@ -201,6 +215,7 @@ class BrowserView(FigureView):
         figsize: tuple[float, float] = (8, 4),
         mode: str | None = None,
         dpi: float = 90,
+        choices: Sequence[str] = (),
     ):
         wanted = mode or display_mode()
         browser = browser_drawing(wanted)
@@ -208,13 +223,14 @@ class BrowserView(FigureView):
         super().__init__(figsize, mode="agg" if browser else wanted, dpi=dpi)
         self.browser = browser
         self.params = tuple(params)
+        self.choices = tuple(choices)  # the parameters whose controls are choices (buttons)
         self._stale = False
         self.canvas: BrowserCanvas | None = None
         self.links: list[
             W.Widget
         ] = []  # slider -> canvas trait, in the browser (ipywidgets.jslink)
         if self.browser:
-            self.canvas = canvas_class(self.params)()
+            self.canvas = canvas_class(self.params, self.choices)()
             self.canvas.layout = W.Layout(max_width="100%")
             self.widget = self.canvas
 
@@ -256,10 +272,18 @@ class BrowserView(FigureView):
             pxPerPoint=fig.dpi / 72.0,
             background=_background_png(self),
             backgroundScale=BACKGROUND_SCALE,
+            # a choice's options by index: widget.js gives the drawer the chosen option itself
+            choices={name: _option_values(demo.controls[name]) for name in self.choices},
         )
         for name in self.params:
-            setattr(self.canvas, name, float(demo.controls[name].value))
-            self.links.append(W.jslink((demo.controls[name], "value"), (self.canvas, name)))
+            control = demo.controls[name]
+            trait = "index" if name in self.choices else "value"  # a choice syncs its index only
+            setattr(
+                self.canvas,
+                name,
+                getattr(control, trait) if name in self.choices else float(control.value),
+            )
+            self.links.append(W.jslink((control, trait), (self.canvas, name)))
         self.canvas.alt = demo.alt_text
 
         def on_change(_change: Any = None) -> None:

@@ -239,19 +239,45 @@ export function clipTo(ctx, box) {
   ctx.clip();
 }
 
-// matplotlib's "+" marker at canvas point `at`: two strokes style.size px long, style.width wide.
-export function plus(ctx, at, style) {
+// Two strokes through canvas point `at`, each from `at` + [dx0, dy0] to `at` + [dx1, dy1] (px), style.width wide.
+function strokes(ctx, at, style, ends) {
   if (!Number.isFinite(at[0]) || !Number.isFinite(at[1])) return;
-  const h = style.size / 2;
   ctx.save();
   ctx.strokeStyle = style.color;
   ctx.lineWidth = style.width;
   ctx.lineCap = "butt";
   ctx.beginPath();
-  ctx.moveTo(at[0] - h, at[1]);
-  ctx.lineTo(at[0] + h, at[1]);
-  ctx.moveTo(at[0], at[1] - h);
-  ctx.lineTo(at[0], at[1] + h);
+  for (const [dx0, dy0, dx1, dy1] of ends) {
+    ctx.moveTo(at[0] + dx0, at[1] + dy0);
+    ctx.lineTo(at[0] + dx1, at[1] + dy1);
+  }
   ctx.stroke();
   ctx.restore();
+}
+
+// matplotlib's "+" marker at canvas point `at`: two strokes style.size px long, style.width wide.
+export function plus(ctx, at, style) {
+  const h = style.size / 2;
+  strokes(ctx, at, style, [[-h, 0, h, 0], [0, -h, 0, h]]);
+}
+
+// matplotlib's "x" marker at canvas point `at`: the diagonals of a square style.size px wide.
+export function times(ctx, at, style) {
+  const h = style.size / 2;
+  strokes(ctx, at, style, [[-h, -h, h, h], [-h, h, h, -h]]);
+}
+
+// A mouse position (canvas pixels) in an axes' data coordinates: the inverse of its affine map
+// `toPixels` (to_canvas_pixels); null outside the axes' box.
+export function pixelsToData(toPixels, box, [u, v]) {
+  if (u < box.left || u > box.right || v < box.top || v > box.bottom) return null;
+  const T = toPixels;
+  const det = T[0][0] * T[1][1] - T[0][1] * T[1][0];
+  const du = u - T[0][2], dv = v - T[1][2];
+  return [(T[1][1] * du - T[0][1] * dv) / det, (-T[1][0] * du + T[0][0] * dv) / det];
+}
+
+// A value clipped to a slider's range {min, max, step} and put on its steps, as the slider shows it.
+export function onSlider(value, r) {
+  return Math.round(Math.min(r.max, Math.max(r.min, value)) / r.step) * r.step;
 }

@@ -711,3 +711,291 @@ export function horizonNote(hz, visible, title) {
   const v = Math.abs(hz[1]) > 1e-12 ? -hz[2] / hz[1] : NaN;
   return `horizon above the image: v = ${Number.isFinite(v) ? formatFixed(v, 0) : "nan"} px at u = 0`;
 }
+
+// ---- lesson 06: a conic under a homography ------------------------------------------------------
+
+// Twin: camlab.widgets.projective_plane.twins.conic_homography(angle_deg, aspect, h31, h32): a
+// stretch of x, a turn, and the perspective row (h31, h32, 1).
+export function conicHomography(angleDeg, aspect, h31, h32) {
+  const t = (angleDeg * Math.PI) / 180;
+  return [[aspect * Math.cos(t), -Math.sin(t), 0], [aspect * Math.sin(t), Math.cos(t), 0], [h31, h32, 1]];
+}
+
+function symmetrised(M) {
+  return M.map((row, i) => row.map((m, j) => (m + M[j][i]) / 2));
+}
+
+// Twin: camlab.projective.map_conic(H, C): H^-T C H^-1, symmetrised.
+export function mapConic(H, C) {
+  const Hinv = inv3(H);
+  return symmetrised(matmul(matmul(transpose(Hinv), C), Hinv));
+}
+
+// Twin: camlab.projective.map_dual_conic(H, C_star): H C* H^T, symmetrised.
+export function mapDualConic(H, Cs) {
+  return symmetrised(matmul(matmul(H, Cs), transpose(H)));
+}
+
+// Twin: camlab.projective.dual_conic(C): the adjugate, rows the cross products of C's columns.
+export function dualConic(C) {
+  const [c1, c2, c3] = transpose(C);
+  return [cross(c2, c3), cross(c3, c1), cross(c1, c2)];
+}
+
+// Twin: camlab.projective.map_lines(H, lines): each line l as H^-T l (rows: lines @ H^-1).
+export function mapLines(H, lines) {
+  return matmul(lines, inv3(H));
+}
+
+function solve2(A, b) {
+  const d = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+  return [(b[0] * A[1][1] - A[0][1] * b[1]) / d, (A[0][0] * b[1] - b[0] * A[1][0]) / d];
+}
+
+// Twin: camlab.projective.conic_points(C, n): n points around a real ellipse, x0 + sqrt(k) S^-1
+// (cos t, sin t) with S = (A + sqrt(det A) I) / sqrt(tr A + 2 sqrt(det A)) the symmetric square
+// root of C's 2 x 2 block (no eigenvectors, whose signs are free: the same C gives the same points).
+// NaN rows where numpy raises (not a real ellipse).
+export function conicPoints(C, n = 100) {
+  let A = [C[0].slice(0, 2), C[1].slice(0, 2)], b = [C[0][2], C[1][2]], c = C[2][2];
+  const det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+  const scale = Math.max(...A.flat().map(Math.abs));
+  const none = Array.from({ length: n }, () => [NaN, NaN]);
+  if (det <= 1e-12 * scale ** 2) return none;
+  if (A[0][0] + A[1][1] < 0) [A, b, c] = [A.map((r) => r.map((v) => -v)), b.map((v) => -v), -c];
+  const x0 = solve2(A, b.map((v) => -v));
+  const Ab = solve2(A, b);
+  const k = b[0] * Ab[0] + b[1] * Ab[1] - c;
+  if (k <= 0) return none;
+  const s = Math.sqrt(A[0][0] * A[1][1] - A[0][1] * A[1][0]);
+  const r = Math.sqrt(A[0][0] + A[1][1] + 2 * s);
+  const S = [[(A[0][0] + s) / r, A[0][1] / r], [A[1][0] / r, (A[1][1] + s) / r]];
+  const step = (2 * Math.PI) / (n - 1);
+  return Array.from({ length: n }, (_, i) => {
+    const t = i === n - 1 ? 2 * Math.PI : i * step; // numpy.linspace: the last is the stop itself
+    const u = solve2(S, [Math.cos(t), Math.sin(t)]);
+    return [x0[0] + Math.sqrt(k) * u[0], x0[1] + Math.sqrt(k) * u[1]];
+  });
+}
+
+function frobenius(M) {
+  return Math.sqrt(M.flat().reduce((s, v) => s + v * v, 0));
+}
+
+function quadratic(x, M) {
+  return x.reduce((s, xi, i) => s + xi * M[i].reduce((t, m, j) => t + m * x[j], 0), 0);
+}
+
+function complexDivide([a, b], [c, d]) {
+  const n = c * c + d * d;
+  return [(a * c + b * d) / n, (b * c - a * d) / n];
+}
+
+// Twin: numpy.allclose(a, b, atol=atol) for complex [re, im] pairs (rtol 1e-5, as numpy's default).
+function allCloseComplex(a, b, atol) {
+  return a.every((z, i) => Math.hypot(z[0] - b[i][0], z[1] - b[i][1]) <= atol + 1e-5 * Math.hypot(...b[i]));
+}
+
+// The tangents x = 1, x = -1, y = 1, y = -1 of the unit circle (twins.CONIC_TANGENTS).
+const CONIC_TANGENTS = [[1, 0, -1], [1, 0, 1], [0, 1, -1], [0, 1, 1]];
+
+// Twin: camlab.widgets.projective_plane.twins.conic_geometry(angle_deg, aspect, h31, h32, samples):
+// the unit circle's image C' (unit norm), its centre and axis ratio, the mapped samples and
+// tangents, the residuals, and H I (I = (1, i, 0), complex entries as [re, im], first entry 1).
+export function conicGeometry(angleDeg, aspect, h31, h32, samples) {
+  const H = conicHomography(angleDeg, aspect, h31, h32);
+  const C = [[1, 0, 0], [0, 1, 0], [0, 0, -1]]; // circle_conic((0, 0), 1)
+  let Cp = mapConic(H, C);
+  const nC = frobenius(Cp);
+  Cp = Cp.map((r) => r.map((v) => v / nC));
+  const mapped = mapPoints(H, samples);
+  const tangents = mapLines(H, CONIC_TANGENTS).map(normaliseLine);
+  let Cs = mapDualConic(H, dualConic(C));
+  const nS = frobenius(Cs);
+  Cs = Cs.map((r) => r.map((v) => v / nS));
+  const HI = H.map((row) => [row[0], row[1]]); // H (1, i, 0)
+  const IMapped = HI.map((z) => complexDivide(z, HI[0]));
+  const sign = Math.sign(Cp[0][0] + Cp[1][1]);
+  const [a, b, d] = [Cp[0][0] * sign, Cp[0][1] * sign, Cp[1][1] * sign];
+  const big = (a + d + Math.hypot(a - d, 2 * b)) / 2; // the eigenvalues of [[a, b], [b, d]]
+  const small = (a * d - b * b) / big;
+  return {
+    H,
+    CMapped: Cp,
+    mapped,
+    tangents,
+    residual: Math.max(...mapped.map(([x, y]) => Math.abs(quadratic([x, y, 1], Cp)))),
+    tangentResidual: Math.max(...tangents.map((l) => Math.abs(quadratic(l, Cs)))),
+    IMapped,
+    fixed: allCloseComplex(IMapped, [[1, 0], [0, 1], [0, 0]], 1e-9),
+    axisRatio: Math.sqrt(small / big),
+    centre: solve2([Cp[0].slice(0, 2), Cp[1].slice(0, 2)], [-Cp[0][2], -Cp[1][2]]),
+  };
+}
+
+// Twin: Python's format(x, ".0e"): one significant digit, the exponent signed and of two digits at
+// least ("2e-16", "1e+00"). JavaScript rounds a tie up, Python to even: only exact decimal ties
+// (2.5, 0.125 ...) differ, which a residual never is.
+export function formatExp0(x) {
+  const [m, e] = x.toExponential(0).split("e");
+  const sign = e.startsWith("-") ? "-" : "+";
+  return `${m}e${sign}${e.replace(/^[+-]/, "").padStart(2, "0")}`;
+}
+
+// Twin: camlab.widgets.projective_plane.twins.in_square_view(line, lim): whether the line crosses
+// the square [-lim, lim]^2.
+export function inSquareView(line, lim = 3) {
+  return clipLine(line, [-lim, lim], [-lim, lim]).flat().every(Number.isFinite);
+}
+
+// Twin: camlab.widgets.projective_plane.twins.conic_caption(g, h31, h32): the three lines under
+// conic_under_homography's plots.
+export function conicCaption(g, h31, h32) {
+  const h = Math.hypot(h31, h32);
+  const verdict = g.fixed
+    ? "= I: H is a similarity, so it maps every circle to a circle"
+    : "≠ I: H is no similarity, so some circles become non-circles";
+  const r = g.axisRatio;
+  const shape = Math.abs(r - 1) < 5e-4 ? "a circle" : r > 0.99 ? "nearly a circle" : "an ellipse";
+  let bounded;
+  if (h === 0) bounded = "H keeps l∞ (the line it sends to ∞ is l∞ itself), so C' stays bounded";
+  else {
+    const seen = inSquareView([h31, h32, 1]) ? "" : ", off the view";
+    bounded = `H sends h31 x + h32 y + 1 = 0 to ∞: ${formatFixed(1 / h, 1)} from C's centre (> 1${seen})`;
+  }
+  const z = ([re, im]) => `${fixed2(re)}${fixed2(im)}i`;
+  const HI = g.IMapped;
+  return (
+    `H I ∝ (1, ${z(HI[1])}, ${z(HI[2])}) ${verdict}\n` +
+    `C': axis ratio ${formatFixed(r, 3)}, ${shape}; ${bounded}\n` +
+    `max |x'ᵀC'x'| over the 8 points ${formatExp0(g.residual)};  ` +
+    `max |l'ᵀC*'l'| over the 4 tangents ${formatExp0(g.tangentResidual)}`
+  );
+}
+
+// ---- lesson 11: epipolar lines ------------------------------------------------------------------
+
+const K800 = [[800, 0, 319.5], [0, 800, 239.5], [0, 0, 1]];
+
+// Twin: camlab.fixtures.lessons._camera_800(R, eye): 640 x 480, f = 800 px, {K, R, t = -R eye}.
+function camera800(R, eye) {
+  return { K: K800, R, t: R.map((row) => -dot3(row, eye)) };
+}
+
+function lookingAhead(eye) {
+  return lookAt(eye, [eye[0] + 0, eye[1] + 1, eye[2] + 0]); // look_at_rotation(eye, eye + [0, 1, 0])
+}
+
+// Twin: camlab.fixtures.stereo_pair(baseline, toe_in): two cameras baseline m apart along x, 1 m
+// up, looking along +y, each turned toe_in / 2 (radians) towards the other about its own y axis
+// (rotation_from_axis_angle([0, turn, 0]) is rotationY(turn)).
+export function stereoPair(baseline, toeIn) {
+  return [[[-baseline / 2, 0, 1], -toeIn / 2], [[baseline / 2, 0, 1], toeIn / 2]].map(
+    ([eye, turn]) => camera800(matmul(rotationY(turn), lookingAhead(eye)), eye),
+  );
+}
+
+// Twin: camlab.fixtures.forward_pair(baseline, turn): the second camera baseline m ahead (+y) of the
+// first, turned by `turn` radians about its y axis.
+export function forwardPair(baseline, turn) {
+  const eye1 = [0, -1, 1], eye2 = [0, -1 + baseline, 1];
+  return [camera800(lookingAhead(eye1), eye1), camera800(matmul(rotationY(turn), lookingAhead(eye2)), eye2)];
+}
+
+// Twin: camlab.widgets.epipolar_twins.MOTIONS: the camera pairs by the names the demo's buttons show.
+export const MOTIONS = { "sideways (stereo rig)": stereoPair, "forward (driving)": forwardPair };
+
+// Twin: Camera.centre: -R^T t.
+export function cameraCentre(cam) {
+  return [0, 1, 2].map((j) => -cam.R.reduce((s, row, i) => s + row[j] * cam.t[i], 0));
+}
+
+// Twin: camlab.epipolar.normalise_fundamental(F): unit Frobenius norm, the largest entry (rounded to
+// 1e-9; the first in row-major order on a tie) positive.
+export function normaliseFundamental(F) {
+  const n = frobenius(F);
+  const a = F.flat().map((v) => v / n);
+  let k = 0;
+  a.forEach((v, i) => { if (Math.round(Math.abs(v) * 1e9) > Math.round(Math.abs(a[k]) * 1e9)) k = i; });
+  const s = Math.sign(a[k]);
+  return [0, 1, 2].map((i) => a.slice(3 * i, 3 * i + 3).map((v) => v * s));
+}
+
+function skew([x, y, z]) {
+  return [[0, -z, y], [z, 0, -x], [-y, x, 0]];
+}
+
+// Twin: camlab.epipolar.fundamental_from_cameras(c1, c2) for two cameras: K2^-T [t]x R K1^-1 with
+// the relative pose R = R2 R1^T, t = t2 - R t1, normalised (normaliseFundamental).
+export function fundamentalFromCameras(c1, c2) {
+  const R = matmul(c2.R, transpose(c1.R));
+  const t = c2.t.map((v, i) => v - dot3(R[i], c1.t));
+  return normaliseFundamental(matmul(matmul(matmul(transpose(inv3(c2.K)), skew(t)), R), inv3(c1.K)));
+}
+
+// Twin: camlab.epipolar.epipolar_lines(F, points, image=1): l' = F x, a^2 + b^2 = 1; a NaN row for
+// a point at the epipole (|(a, b)| <= 1e-9 |F| |x|).
+export function epipolarLines(F, points) {
+  const nF = frobenius(F);
+  return points.map(([u, v]) => {
+    const l = apply(F, [u, v, 1]);
+    if (Math.hypot(l[0], l[1]) <= 1e-9 * nF * Math.hypot(u, v, 1)) return [NaN, NaN, NaN];
+    return normaliseLine(l);
+  });
+}
+
+// Twin: Camera.backproject(uv, depth): the world points at camera depth z along each pixel's ray,
+// R^T (z K^-1 (u, v, 1) - t).
+export function backproject(cam, uv, depths) {
+  const Kinv = inv3(cam.K);
+  return uv.map(([u, v], i) => {
+    const c = apply(Kinv, [u, v, 1]).map((x, k) => x * depths[i] - cam.t[k]);
+    return [0, 1, 2].map((j) => c.reduce((s, x, k) => s + x * cam.R[k][j], 0));
+  });
+}
+
+// Twin: camlab.widgets.epipolar_twins.line_polyline(lines, size): each line's ends on the image's
+// left and right edges (u = -0.5, w - 0.5) when mostly horizontal, else on its top and bottom, and
+// a NaN row after each.
+export function linePolyline(lines, size) {
+  const [w, h] = size;
+  return lines.flatMap(([a, b, c]) => {
+    if (Math.abs(b) >= Math.abs(a)) return [[-0.5, -(a * -0.5 + c) / b], [w - 0.5, -(a * (w - 0.5) + c) / b], [NaN, NaN]];
+    if (a !== 0) return [[-(b * -0.5 + c) / a, -0.5], [-(b * (h - 0.5) + c) / a, h - 0.5], [NaN, NaN]];
+    return [[NaN, NaN], [NaN, NaN], [NaN, NaN]];
+  });
+}
+
+// Twin: camlab.widgets.epipolar_twins.projected_segments(cam, segs): world segments as one
+// NaN-separated polyline of pixels (cameraProject: NaN for an end behind the camera).
+export function projectedSegments(cam, segs) {
+  return polylineData(segs.map((seg) => cameraProject(cam, seg)));
+}
+
+// Twin: camlab.widgets.epipolar_twins.DEPTHS: 1, ..., 6 m.
+export const DEPTHS = [1, 2, 3, 4, 5, 6];
+
+// Twin: camlab.widgets.epipolar_twins.epipolar_view(motion, baseline, toe_in_deg, point, ref): the
+// two cameras, F, the point's lines (l' = F x right, l = x x e left), the reference pixels' pencils
+// (NaN rows at the left epipole), the depth marks and the epipoles P C', P' C.
+export function epipolarView(motion, baseline, toeInDeg, point, ref) {
+  const pair = MOTIONS[motion];
+  if (!pair) throw new Error(`motion: expected one of ${Object.keys(MOTIONS)}, got ${motion}`);
+  const [c1, c2] = pair(baseline, (toeInDeg * Math.PI) / 180);
+  const F = fundamentalFromCameras(c1, c2);
+  const image = (cam, X) => apply(cam.K, cam.R.map((row, i) => dot3(row, X) + cam.t[i]));
+  const e1 = image(c1, cameraCentre(c2)), e2 = image(c2, cameraCentre(c1));
+  const pencilRight = epipolarLines(F, ref);
+  const pencilLeft = ref.map(([u, v], i) => (Number.isNaN(pencilRight[i][0]) ? [NaN, NaN, NaN] : cross([u, v, 1], e1)));
+  const ray = backproject(c1, DEPTHS.map(() => point), DEPTHS);
+  return {
+    cameras: [c1, c2],
+    F,
+    lineRight: epipolarLines(F, [point])[0],
+    lineLeft: cross([point[0], point[1], 1], e1),
+    pencilRight,
+    pencilLeft,
+    depthPoints: cameraProject(c2, ray),
+    epipoles: [e1, e2],
+  };
+}

@@ -13,12 +13,13 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import to_hex
 
-from . import line_style, marker_style, text_lines, text_style, to_canvas_pixels
-from .scenes import arrow_style, axes_box
+from . import line_style, marker_style, text_lines, text_style
+from .scenes import arrow_pointing_right, arrow_style, cross_marker_style, plane_panel
 
 __all__ = [
     "boxed_text_scene",
     "collection_style",
+    "conic_scene",
     "cross_ratio_scene",
     "duality_scene",
     "parallel_scene",
@@ -27,28 +28,6 @@ __all__ = [
     "text_scene",
     "vanishing_scene",
 ]
-
-
-def plane_panel(ax: Any) -> dict:
-    """One panel: its map to canvas pixels, its box (what its lines are clipped to) and its limits.
-
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes
-        The axes, after the figure's layout is fixed.
-
-    Returns
-    -------
-    dict
-        ``toPixels``, ``box`` (px), ``xlim`` and ``ylim`` (data units, low first: what
-        ``set_line`` clips an infinite line to).
-    """
-    return dict(
-        toPixels=to_canvas_pixels(ax),
-        box=axes_box(ax),
-        xlim=[float(c) for c in ax.get_xlim()],
-        ylim=sorted(float(c) for c in ax.get_ylim()),
-    )
 
 
 def text_scene(text: Any) -> dict:
@@ -267,14 +246,13 @@ def vanishing_scene(art: Mapping[str, Any], world: Mapping[str, Any]) -> dict:
     ax = art["ax"]
     pt = ax.figure.dpi / 72.0
     w, h = world["size"]
-    path = np.asarray(world["arrow"], dtype=float)[:-1]
     return dict(
         panel=plane_panel(ax),
         size=[int(w), int(h)],
         box=[[-0.5, w - 0.5], [-0.5, h - 0.5]],
         title=str(world["title"]),
         noteColor=to_hex(world["note_color"]),
-        arrow=np.column_stack([path[:, 1], -path[:, 0]]).tolist(),
+        arrow=arrow_pointing_right(world["arrow"]),
         styles=dict(
             gridZ=collection_style(art["grid_z"], pt),
             gridX=collection_style(art["grid_x"], pt),
@@ -282,5 +260,37 @@ def vanishing_scene(art: Mapping[str, Any], world: Mapping[str, Any]) -> dict:
             vz=marker_style(art["vz_dot"], pt),
             vx=marker_style(art["vx_dot"], pt),
             note=text_scene(art["note"]),
+        ),
+    )
+
+
+def conic_scene(parts: Any) -> dict:
+    """What ``projective_plane.js`` needs to draw ``conic_under_homography`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    parts : namespace
+        The figure's parts (``_conic_figure``): ``ax_b``, ``ax_a`` (before and after, drawn once),
+        ``samples`` ((8, 2) points on the unit circle) and the moving artists ``to_infinity``,
+        ``conic``, ``tangents``, ``centre_image`` ("+"), ``centre_conic`` ("x"), ``mapped`` (a
+        scatter) and ``text`` (the caption).
+
+    Returns
+    -------
+    dict
+        The scene (JSON).
+    """
+    pt = parts.ax_a.figure.dpi / 72.0
+    return dict(
+        panels=[plane_panel(parts.ax_b), plane_panel(parts.ax_a)],
+        samples=np.asarray(parts.samples, dtype=float).tolist(),
+        styles=dict(
+            toInfinity=line_style(parts.to_infinity, pt),
+            conic=line_style(parts.conic, pt),
+            tangent=line_style(parts.tangents[0], pt),
+            centreImage=cross_marker_style(parts.centre_image, pt),
+            centreConic=cross_marker_style(parts.centre_conic, pt),
+            mapped=scatter_style(parts.mapped, pt),
+            caption=text_scene(parts.text),
         ),
     )

@@ -1,8 +1,8 @@
-import { arrowPlacement, clipLine, crossRatioCaption, crossRatioHomography, drawnVanishingPoint, dualityCaption, horizonLine, horizonNote, labelOffset, lineAtAngle, mapPoints, meetOrNull, meetWCurve, normalLine, normalisePoint, polylineData, rolledView } from "./geometry.js";
+import { arrowPlacement, clipLine, conicCaption, conicGeometry, conicPoints, crossRatioCaption, crossRatioHomography, drawnVanishingPoint, dualityCaption, horizonLine, horizonNote, labelOffset, lineAtAngle, mapPoints, meetOrNull, meetWCurve, normalLine, normalisePoint, polylineData, rolledView } from "./geometry.js";
 // (one line: esm_source drops the lines that start with "import")
 // Lesson 06's demos drawn in the browser: each drawer is the twin of its demo's update in
 // camlab/widgets/projective_plane (the arithmetic in geometry.js, each function's numpy twin named there).
-import { arrow, boxedText, clipTo, dot, label, marker, polyline, textLines } from "./drawing.js";
+import { arrow, boxedText, clipTo, dot, label, marker, plus, polyline, textLines, times } from "./drawing.js";
 
 // Draw in one panel ({toPixels, box, xlim, ylim}), clipped to its axes as matplotlib clips lines:
 // `paint(px, panel)` gets the data-to-pixel map for point lists.
@@ -115,4 +115,26 @@ export function drawVanishingPoints(ctx, scene, v) {
   const note = st.note;
   textLines(ctx, horizonNote(hz, visible, scene.title), { ...note, color: visible ? note.color : scene.noteColor });
   return { vpZ, vpX, hz };
+}
+
+// Twin: camlab.widgets.projective_plane.conic_under_homography's update: the line H sends to
+// infinity (left, none when H keeps l_inf); C' = H^-T C H^-1, the four mapped tangents, the image
+// of C's centre (+), C''s centre (x) and the eight mapped points (right, in a full draw's order);
+// the caption.
+export function drawConic(ctx, scene, v) {
+  const g = conicGeometry(v.angle, v.aspect, v.h31, v.h32, scene.samples);
+  const [before, after] = scene.panels;
+  const st = scene.styles;
+  if (v.h31 !== 0 || v.h32 !== 0) {
+    inPanel(ctx, before, (px) => polyline(ctx, px(lineInPanel([v.h31, v.h32, 1], before)), st.toInfinity));
+  }
+  inPanel(ctx, after, (px) => {
+    polyline(ctx, px(conicPoints(g.CMapped, 200)), st.conic);
+    for (const t of g.tangents) polyline(ctx, px(lineInPanel(t, after)), st.tangent);
+    plus(ctx, px([[0, 0]])[0], st.centreImage);
+    times(ctx, px([g.centre])[0], st.centreConic);
+    for (const at of px(g.mapped)) dot(ctx, at, st.mapped);
+  });
+  textLines(ctx, conicCaption(g, v.h31, v.h32), st.caption);
+  return g;
 }

@@ -18,13 +18,16 @@ from ...plotting import optics
 from . import canvas_height, line_style, marker_style, text_lines, text_style, to_canvas_pixels
 
 __all__ = [
+    "arrow_pointing_right",
     "arrow_style",
     "axes_box",
     "cross_marker_style",
     "dolly_zoom_scene",
+    "epipolar_scene",
     "fill_style",
     "log_canvas_pixels",
     "path_marker_style",
+    "plane_panel",
     "similar_triangles_scene",
     "three_cameras_scene",
 ]
@@ -343,3 +346,91 @@ def dolly_zoom_scene(
         principalPoint=[float(c) for c in world["principal_point"]],
         distances=np.asarray(world["distances"], dtype=float).tolist(),
     )
+
+
+def epipolar_scene(
+    art: Any, refs: Any, world: Mapping[str, Any], controls: Mapping[str, Any]
+) -> dict:
+    """What ``epipolar.js`` needs to draw lesson 11's ``epipolar_lines`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    art : namespace
+        The figure's parts: ``axl``, ``axr`` (the two images, drawn once) and the moving artists
+        ``wl``, ``wr`` (outlines), ``pencil_l``, ``point``, ``line_l``, ``line_r``, ``depth_dots``,
+        ``epi_l`` (a star), ``shafts`` and ``heads`` (an epipole off the image).
+    refs : matplotlib.lines.Line2D
+        The reference pixels' square markers.
+    world : mapping
+        ``segments`` ((M, 2, 3) world outlines, m), ``ref`` ((K, 2) reference pixels), ``size``
+        (the image, px) and ``arrow`` (the arrowhead's closed path, pointing up).
+    controls : mapping
+        The demo's controls: the ranges a click or drag in the left image clips ``u`` and ``v`` to.
+
+    Returns
+    -------
+    dict
+        The scene (JSON); the arrowhead's vertices turned to point right (``drawing.js``'s ``marker``).
+    """
+    pt = art.axl.figure.dpi / 72.0
+    return dict(
+        panels=[plane_panel(art.axl), plane_panel(art.axr)],
+        segments=np.asarray(world["segments"], dtype=float).tolist(),
+        ref=np.asarray(world["ref"], dtype=float).tolist(),
+        size=[int(c) for c in world["size"]],
+        arrow=arrow_pointing_right(world["arrow"]),
+        ranges=_ranges(controls, "u", "v"),
+        styles=dict(
+            wire=line_style(art.wl, pt),
+            pencil=line_style(art.pencil_l, pt),
+            point=marker_style(art.point, pt),
+            lineLeft=line_style(art.line_l, pt),
+            lineRight=line_style(art.line_r, pt),
+            depth=marker_style(art.depth_dots, pt),
+            epipole=path_marker_style(art.epi_l, pt),
+            shaft=line_style(art.shafts[0], pt),
+            head=marker_style(art.heads[0], pt),
+            ref=path_marker_style(refs, pt),
+        ),
+    )
+
+
+def plane_panel(ax: Any) -> dict:
+    """One panel: its map to canvas pixels, its box (what its lines are clipped to) and its limits.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes, after the figure's layout is fixed.
+
+    Returns
+    -------
+    dict
+        ``toPixels``, ``box`` (px), ``xlim`` and ``ylim`` (data units, low first: what
+        ``set_line`` clips an infinite line to).
+    """
+    return dict(
+        toPixels=to_canvas_pixels(ax),
+        box=axes_box(ax),
+        xlim=[float(c) for c in ax.get_xlim()],
+        ylim=sorted(float(c) for c in ax.get_ylim()),
+    )
+
+
+def arrow_pointing_right(path: Any) -> list[list[float]]:
+    """An arrowhead marker's closed path pointing up (+y), turned to point right (+x), its last vertex dropped.
+
+    ``drawing.js``'s ``marker`` turns a path from +x to the way it is asked to point.
+
+    Parameters
+    ----------
+    path : (N, 2) array_like
+        The closed path (its last vertex its first), e.g. :data:`camlab.plotting.plane.ARROW_PATH`.
+
+    Returns
+    -------
+    list of N - 1 [x, y]
+        The open path, turned by -90 degrees.
+    """
+    verts = np.asarray(path, dtype=float)[:-1]
+    return np.column_stack([verts[:, 1], -verts[:, 0]]).tolist()

@@ -1,7 +1,7 @@
 import { mapPoints, ratiosTitle, similarTrianglesLayout } from "./geometry.js";
 // Lesson 01's similar_triangles drawn in the browser: twin of camlab.widgets.pinhole_camera.similar_triangles'
 // update (camlab.plotting.optics.update_similar_triangles and its title); a click or drag sets Z and Y.
-import { polyline, polygon, dot, label, doubleArrow } from "./drawing.js";
+import { polyline, polygon, dot, label, doubleArrow, onSlider, pixelsToData } from "./drawing.js";
 
 export function drawSimilarTriangles(ctx, scene, p) {
   const lay = similarTrianglesLayout(p.f, p.Z, p.Y, scene.h, scene.rooms);
@@ -39,14 +39,8 @@ export function drawSimilarTriangles(ctx, scene, p) {
 
 // A press or drag at canvas pixel (u, v): the object point there, as the kernel's on_mouse sets it
 // (clipped to the sliders' ranges, on their 0.05 m steps); null outside the axes.
-export function dragSimilarTriangles(scene, [u, v]) {
-  const a = scene.axes;
-  if (u < a.left || u > a.right || v < a.top || v > a.bottom) return null;
-  const T = scene.toPixels; // affine: invert its 2x2 part
-  const det = T[0][0] * T[1][1] - T[0][1] * T[1][0];
-  const du = u - T[0][2], dv = v - T[1][2];
-  const z = (T[1][1] * du - T[0][1] * dv) / det;
-  const up = (-T[1][0] * du + T[0][0] * dv) / det;
-  const put = (value, r) => Math.round(Math.min(r.max, Math.max(r.min, value)) / r.step) * r.step;
-  return { Z: put(z, scene.ranges.Z), Y: put(-up, scene.ranges.Y) };
+export function dragSimilarTriangles(scene, at) {
+  const p = pixelsToData(scene.toPixels, scene.axes, at);
+  if (!p) return null;
+  return { Z: onSlider(p[0], scene.ranges.Z), Y: onSlider(-p[1], scene.ranges.Y) };
 }

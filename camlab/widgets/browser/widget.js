@@ -4,7 +4,8 @@ import { drawStackCheck } from "./stack_check.js";
 import { drawSimilarTriangles, dragSimilarTriangles } from "./similar_triangles.js";
 import { drawThreeCameras } from "./three_cameras.js";
 import { drawDollyZoom } from "./dolly_zoom.js";
-import { drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
+import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
+import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
 // `drag(scene, [u, v])`, where a demo takes the mouse, turns a press or drag at figure pixel (u, v)
@@ -18,6 +19,8 @@ const SCENES = {
   parallel_lines: { draw: drawParallelLines },
   cross_ratio_invariance: { draw: drawCrossRatio },
   vanishing_points: { draw: drawVanishingPoints },
+  conic_under_homography: { draw: drawConic },
+  epipolar_lines: { draw: drawEpipolarLines, drag: dragEpipolarLines },
 };
 
 // A press, and a move with the button held, on the canvas set the parameters the demo's drag names.
@@ -55,6 +58,7 @@ function render({ model, el }) {
     if (!ready || !scene || !scene.kind) return;
     const params = {};
     for (const name of scene.params) params[name] = model.get(name);
+    for (const [name, options] of Object.entries(scene.choices || {})) params[name] = options[params[name]];
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.clearRect(0, 0, canvas.width, canvas.height);
     ctx.setTransform(canvas.width / scene.width, 0, 0, canvas.height / scene.height, 0, 0);

@@ -10,6 +10,9 @@ from ... import projective as pj
 from ...plotting import palette
 from ...plotting.plane import plane_axes, set_line
 from .._base import Demo, FigureView, build_demo, register, slider
+from ..browser import BrowserView
+from ..browser.plane_scenes import conic_scene
+from .twins import conic_caption, conic_geometry
 
 
 def _conic_figure(view: FigureView) -> SimpleNamespace:
@@ -72,90 +75,6 @@ def _conic_figure(view: FigureView) -> SimpleNamespace:
     )
 
 
-def _complex_text(z: complex) -> str:
-    return f"{z.real:+.2f}{z.imag:+.2f}i"
-
-
-def _conic_geometry(v: dict, samples: np.ndarray) -> SimpleNamespace:
-    """What :func:`conic_under_homography` draws and reports for the control values ``v``.
-
-    H, the mapped unit circle C' (unit norm) and its centre, the mapped ``samples`` and tangents,
-    the residuals x'^T C' x' and l'^T C*' l', H I scaled to a first entry 1, the axis ratio.
-    """
-    t = np.radians(v["angle"])
-    H = np.array(
-        [
-            [v["aspect"] * np.cos(t), -np.sin(t), 0.0],
-            [v["aspect"] * np.sin(t), np.cos(t), 0.0],
-            [v["h31"], v["h32"], 1.0],
-        ]
-    )
-    C = pj.circle_conic([0.0, 0.0], 1.0)
-    Cp = pj.map_conic(H, C)
-    Cp = Cp / np.linalg.norm(Cp)
-    q = pj.map_points(H, samples)
-    q_h = pj.to_homogeneous(q)
-    square = [[1.0, 0, -1], [1, 0, 1], [0, 1, -1], [0, 1, 1]]  # the tangents x = ±1, y = ±1
-    tangents = pj.normalise_lines(pj.map_lines(H, square))
-    Cs = pj.map_dual_conic(H, pj.dual_conic(C))
-    Cs = Cs / np.linalg.norm(Cs)
-    circular_I = pj.CIRCULAR_POINTS[0]  # I = (1, i, 0)
-    HI = H @ circular_I
-    lam = np.linalg.eigvalsh(Cp[:2, :2] * np.sign(np.trace(Cp[:2, :2])))  # made positive definite
-    return SimpleNamespace(
-        H=H,
-        C_mapped=Cp,
-        mapped=q,
-        tangents=tangents,
-        residual=float(np.abs(np.einsum("ni,ij,nj->n", q_h, Cp, q_h)).max()),
-        tangent_residual=float(np.abs(np.einsum("ni,ij,nj->n", tangents, Cs, tangents)).max()),
-        I_mapped=HI / HI[0],
-        fixed=bool(np.allclose(HI / HI[0], circular_I, atol=1e-9)),
-        axis_ratio=float(np.sqrt(lam[0] / lam[1])),
-        centre=np.linalg.solve(Cp[:2, :2], -Cp[:2, 2]),
-    )
-
-
-def _in_view(line: np.ndarray, lim: float = 3.0) -> bool:
-    """Whether ``line`` crosses the square view [-lim, lim]^2 of the demo's left plot."""
-    ends = pj.clip_line(line, (-lim, lim), (-lim, lim))  # NaN rows when it misses the view
-    return len(ends) == 2 and bool(np.all(np.isfinite(ends)))
-
-
-def _conic_text(g: SimpleNamespace, v: dict) -> str:
-    """The three lines under :func:`conic_under_homography`'s plots.
-
-    The first judges H (does it fix I?), the second the conic itself (its axis ratio): a
-    similarity maps *every* circle to a circle, but a non-similarity can still map *this* one to
-    a circle (stretch = sqrt(1 - h31^2) with h32 = 0), so the shape is read from C', not from H.
-    """
-    # H sends the line H^T l_inf = (h31, h32, 1) to infinity; C' is bounded while C stays clear of it
-    h = np.hypot(v["h31"], v["h32"])
-    verdict = (
-        "= I: H is a similarity, so it maps every circle to a circle"
-        if g.fixed
-        else "≠ I: H is no similarity, so some circles become non-circles"
-    )
-    if abs(g.axis_ratio - 1.0) < 5e-4:
-        shape = "a circle"
-    elif g.axis_ratio > 0.99:
-        shape = "nearly a circle"
-    else:
-        shape = "an ellipse"
-    if h == 0:  # the legend's dashed line is then l_inf itself, which no view shows
-        bounded = "H keeps l∞ (the line it sends to ∞ is l∞ itself), so C' stays bounded"
-    else:
-        seen = "" if _in_view(np.array([v["h31"], v["h32"], 1.0])) else ", off the view"
-        bounded = f"H sends h31 x + h32 y + 1 = 0 to ∞: {1 / h:.1f} from C's centre (> 1{seen})"
-    HI = g.I_mapped
-    return (
-        f"H I ∝ (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
-        f"C': axis ratio {g.axis_ratio:.3f}, {shape}; {bounded}\n"
-        f"max |x'ᵀC'x'| over the 8 points {g.residual:.0e};  "
-        f"max |l'ᵀC*'l'| over the 4 tangents {g.tangent_residual:.0e}"
-    )
-
-
 @register(
     lesson="06",
     sweep={
@@ -181,7 +100,7 @@ def conic_under_homography() -> Demo:
         the 4 mapped tangents against the dual conic H C* H^T, ``I_mapped`` H I scaled to a first
         entry 1, ``fixes_circular_points``, ``axis_ratio`` the ellipse's minor / major axis).
     """
-    view = FigureView(figsize=(9, 6.0))
+    view = BrowserView(("angle", "aspect", "h31", "h32"), figsize=(9, 6.0))
     parts = _conic_figure(view)
     view.animate(
         parts.to_infinity,
@@ -194,7 +113,7 @@ def conic_under_homography() -> Demo:
     )
 
     def update(v: dict, state: dict) -> None:
-        g = _conic_geometry(v, parts.samples)
+        g = conic_geometry(v["angle"], v["aspect"], v["h31"], v["h32"], parts.samples)
         state.update(
             H=g.H,
             C_mapped=g.C_mapped,
@@ -210,7 +129,7 @@ def conic_under_homography() -> Demo:
             set_line(artist, line, parts.ax_a)
         parts.centre_image.set_data([0.0], [0.0])  # H keeps the origin: no translation
         parts.centre_conic.set_data([g.centre[0]], [g.centre[1]])
-        parts.text.set_text(_conic_text(g, v))
+        parts.text.set_text(conic_caption(g, v["h31"], v["h32"]))
         if v["h31"] == 0 and v["h32"] == 0:  # H keeps l_inf: no finite line goes to infinity
             parts.to_infinity.set_data([], [])
         else:
@@ -222,10 +141,12 @@ def conic_under_homography() -> Demo:
         "h31": slider(0.3, -0.35, 0.35, 0.01, "h31 (perspective x)"),
         "h32": slider(0.15, -0.35, 0.35, 0.01, "h32 (perspective y)"),
     }
-    return build_demo(
+    demo = build_demo(
         "conic_under_homography",
         controls,
         view,
         update,
         title="A circle under a homography: conics map by H^-T C H^-1",
     )
+    view.publish(demo, conic_scene(parts))  # the browser draws the moves
+    return demo

@@ -17,13 +17,19 @@ from ...camera import rotation_z
 from ...plotting.plane import arrow_placement
 
 __all__ = [
+    "CONIC_TANGENTS",
+    "ConicGeometry",
     "ab_over_bc",
+    "conic_caption",
+    "conic_geometry",
+    "conic_homography",
     "cross_ratio_caption",
     "cross_ratio_homography",
     "RolledView",
     "drawn_vanishing_point",
     "duality_caption",
     "horizon_note",
+    "in_square_view",
     "label_offset",
     "line_at_angle",
     "meet_or_none",
@@ -318,3 +324,188 @@ def horizon_note(hz: np.ndarray, visible: bool, title: str) -> str:
         return title
     v_horizon = float(-hz[2] / hz[1]) if abs(hz[1]) > 1e-12 else float("nan")
     return f"horizon above the image: v = {v_horizon:.0f} px at u = 0"
+
+
+CONIC_TANGENTS = np.array([[1.0, 0, -1], [1, 0, 1], [0, 1, -1], [0, 1, 1]])
+"""The four tangents x = 1, x = -1, y = 1, y = -1 of the unit circle (lines (a, b, c))."""
+
+
+def conic_homography(angle_deg: float, aspect: float, h31: float, h32: float) -> np.ndarray:
+    """The homography of :func:`~camlab.widgets.projective_plane.conic_under_homography`.
+
+    Parameters
+    ----------
+    angle_deg : float
+        The turn, degrees.
+    aspect : float
+        The stretch of x (before the turn).
+    h31, h32 : float
+        The perspective row (h31, h32, 1).
+
+    Returns
+    -------
+    (3, 3) ndarray
+        ``[[a cos t, -sin t, 0], [a sin t, cos t, 0], [h31, h32, 1]]``.
+    """
+    t = np.radians(angle_deg)
+    return np.array(
+        [
+            [aspect * np.cos(t), -np.sin(t), 0.0],
+            [aspect * np.sin(t), np.cos(t), 0.0],
+            [h31, h32, 1.0],
+        ]
+    )
+
+
+class ConicGeometry(NamedTuple):
+    r"""What :func:`conic_geometry` returns: the unit circle's image and the numbers reported on it.
+
+    Attributes
+    ----------
+    H : (3, 3) ndarray
+        The homography.
+    C_mapped : (3, 3) ndarray
+        :math:`C' = H^{-T} C H^{-1}`, scaled to unit (Frobenius) norm.
+    mapped : (N, 2) ndarray
+        The samples after H.
+    tangents : (4, 3) ndarray
+        :data:`CONIC_TANGENTS` after H (:math:`H^{-T} l`), a^2 + b^2 = 1.
+    residual, tangent_residual : float
+        The largest :math:`|x'^T C' x'|` over the mapped samples (w = 1), and the largest
+        :math:`|l'^T C^{*\prime} l'|` over the mapped tangents against :math:`H C^* H^T` (unit norm).
+    I_mapped : (3,) complex ndarray
+        :math:`H I`, I = (1, i, 0), scaled to a first entry 1.
+    fixed : bool
+        Whether H fixes I (``np.allclose(H I, I, atol=1e-9)``, so rtol 1e-5).
+    axis_ratio : float
+        The ellipse's minor / major axis.
+    centre : (2,) ndarray
+        The centre of C'.
+    """
+
+    H: np.ndarray
+    C_mapped: np.ndarray
+    mapped: np.ndarray
+    tangents: np.ndarray
+    residual: float
+    tangent_residual: float
+    I_mapped: np.ndarray
+    fixed: bool
+    axis_ratio: float
+    centre: np.ndarray
+
+
+def conic_geometry(
+    angle_deg: float, aspect: float, h31: float, h32: float, samples: np.ndarray
+) -> ConicGeometry:
+    """The unit circle C under :func:`conic_homography`: what the demo draws and reports.
+
+    Parameters
+    ----------
+    angle_deg, aspect, h31, h32 : float
+        The controls (:func:`conic_homography`).
+    samples : (N, 2) ndarray
+        Points on the unit circle.
+
+    Returns
+    -------
+    ConicGeometry
+        H, C' and its centre and axis ratio, the mapped samples and tangents, the two residuals,
+        H I.
+    """
+    H = conic_homography(angle_deg, aspect, h31, h32)
+    C = pj.circle_conic([0.0, 0.0], 1.0)
+    Cp = pj.map_conic(H, C)
+    Cp = Cp / np.linalg.norm(Cp)
+    q = pj.map_points(H, samples)
+    q_h = pj.to_homogeneous(q)
+    tangents = pj.normalise_lines(pj.map_lines(H, CONIC_TANGENTS))
+    Cs = pj.map_dual_conic(H, pj.dual_conic(C))
+    Cs = Cs / np.linalg.norm(Cs)
+    HI = H @ pj.CIRCULAR_POINTS[0]  # I = (1, i, 0)
+    A = Cp[:2, :2] * np.sign(np.trace(Cp[:2, :2]))  # made positive definite
+    lam = np.linalg.eigvalsh(A)
+    return ConicGeometry(
+        H=H,
+        C_mapped=Cp,
+        mapped=q,
+        tangents=tangents,
+        residual=float(np.abs(np.einsum("ni,ij,nj->n", q_h, Cp, q_h)).max()),
+        tangent_residual=float(np.abs(np.einsum("ni,ij,nj->n", tangents, Cs, tangents)).max()),
+        I_mapped=HI / HI[0],
+        fixed=bool(np.allclose(HI / HI[0], pj.CIRCULAR_POINTS[0], atol=1e-9)),
+        axis_ratio=float(np.sqrt(lam[0] / lam[1])),
+        centre=np.linalg.solve(Cp[:2, :2], -Cp[:2, 2]),
+    )
+
+
+def _complex_text(z: complex) -> str:
+    """``+a.aa+b.bbi``, each part rounded to 0.01 first, so a rounded zero reads +0.00, never -0.00."""
+    return f"{round(z.real, 2) + 0.0:+.2f}{round(z.imag, 2) + 0.0:+.2f}i"
+
+
+def in_square_view(line: np.ndarray, lim: float = 3.0) -> bool:
+    """Whether ``line`` crosses the square view [-lim, lim]^2.
+
+    Parameters
+    ----------
+    line : (3,) ndarray
+        The line (a, b, c).
+    lim : float
+        The view's half-width.
+
+    Returns
+    -------
+    bool
+        True when :func:`camlab.projective.clip_line` finds two finite ends.
+    """
+    ends = pj.clip_line(line, (-lim, lim), (-lim, lim))  # NaN rows when it misses the view
+    return bool(np.all(np.isfinite(ends)))
+
+
+def conic_caption(g: ConicGeometry, h31: float, h32: float) -> str:
+    """The three lines under :func:`~camlab.widgets.projective_plane.conic_under_homography`'s plots.
+
+    The first judges H (does it fix I?), the second the conic itself (its axis ratio): a
+    similarity maps *every* circle to a circle, but a non-similarity can still map *this* one to
+    a circle (stretch = sqrt(1 - h31^2) with h32 = 0), so the shape is read from C', not from H.
+    The third gives the two residuals (round-off: another machine, or the browser's twin, may
+    print another digit).
+
+    Parameters
+    ----------
+    g : ConicGeometry
+        :func:`conic_geometry`'s answer.
+    h31, h32 : float
+        The perspective row.
+
+    Returns
+    -------
+    str
+        Three lines.
+    """
+    # H sends the line H^T l_inf = (h31, h32, 1) to infinity; C' is bounded while C stays clear of it
+    h = np.hypot(h31, h32)
+    verdict = (
+        "= I: H is a similarity, so it maps every circle to a circle"
+        if g.fixed
+        else "≠ I: H is no similarity, so some circles become non-circles"
+    )
+    if abs(g.axis_ratio - 1.0) < 5e-4:
+        shape = "a circle"
+    elif g.axis_ratio > 0.99:
+        shape = "nearly a circle"
+    else:
+        shape = "an ellipse"
+    if h == 0:  # the legend's dashed line is then l_inf itself, which no view shows
+        bounded = "H keeps l∞ (the line it sends to ∞ is l∞ itself), so C' stays bounded"
+    else:
+        seen = "" if in_square_view(np.array([h31, h32, 1.0])) else ", off the view"
+        bounded = f"H sends h31 x + h32 y + 1 = 0 to ∞: {1 / h:.1f} from C's centre (> 1{seen})"
+    HI = g.I_mapped
+    return (
+        f"H I ∝ (1, {_complex_text(HI[1])}, {_complex_text(HI[2])}) {verdict}\n"
+        f"C': axis ratio {g.axis_ratio:.3f}, {shape}; {bounded}\n"
+        f"max |x'ᵀC'x'| over the 8 points {g.residual:.0e};  "
+        f"max |l'ᵀC*'l'| over the 4 tangents {g.tangent_residual:.0e}"
+    )
