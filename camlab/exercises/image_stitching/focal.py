@@ -645,16 +645,22 @@ def _one_focal(H, shape):
     return float(np.nanmedian(focal_from_rotation_homography(H, shape)))
 
 
+def _focals_from_squares(f2: dict, H, shape) -> tuple:
+    """(f_from, f_to) from the squared formulas ``f2``: each group's deciding formula, NaN if <= 0."""
+    out = []
+    for keys in (_ROWS, _COLUMNS):
+        v = f2[_decides(H, shape, keys)]
+        out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
+    return tuple(out)
+
+
 def _abs_student(slip: str = ""):
     """The prompt's rule with sqrt(|f^2|) where f^2 < 0 (K12's student), with an optional ``slip``."""
 
     def student(H, shape):
-        f2 = _focal_formulas(H, shape, slip, absolute=True, squared=True)
-        out = []
-        for keys in (_ROWS, _COLUMNS):
-            v = f2[_decides(H, shape, keys)]
-            out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
-        return tuple(out)
+        return _focals_from_squares(
+            _focal_formulas(H, shape, slip, absolute=True, squared=True), H, shape
+        )
 
     return student
 
@@ -665,11 +671,7 @@ def _flipped(formula: str):
     def student(H, shape):
         f2 = _focal_formulas(H, shape, squared=True)
         f2[formula] = -f2[formula]
-        out = []
-        for keys in (_ROWS, _COLUMNS):
-            v = f2[_decides(H, shape, keys)]
-            out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
-        return tuple(out)
+        return _focals_from_squares(f2, H, shape)
 
     return student
 
