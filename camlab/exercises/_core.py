@@ -490,16 +490,6 @@ def _hidden_by_rounding(vector: np.ndarray) -> bool:
     return bool(np.any((v > 1e-9 * v.max()) & (np.round(v, 4) == 0)))
 
 
-def _blown_up(shown: Any, expected: np.ndarray) -> bool:
-    """True when rescaling multiplied the expected answer by more than 1e9.
-
-    A student who divided by an entry that should be 0 (h33 of a homography) returns entries near
-    1e18; stretched to that scale, the reference's own rounding noise prints as large numbers.
-    """
-    e_norm = np.linalg.norm(expected) if np.isfinite(expected).all() else 0.0
-    return bool(e_norm > 0 and np.linalg.norm(np.asarray(shown, dtype=float)) > 1e9 * e_norm)
-
-
 def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, str]:
     """The expected answer as a failed check shows it, and a note on its scale.
 
@@ -510,13 +500,9 @@ def _expected_shown(exercise: Exercise, got: Any, expected: Any) -> tuple[Any, s
     if exercise.compare is not same_up_to_scale and not exercise.up_to_scale:
         return expected, ""
     shown = rescaled_to(got, expected)  # compare after fixing the free scale
-    e = np.asarray(expected, dtype=float)
-    if shown is not None and _blown_up(shown, e):  # show both as they are: h33 = 1 above, 0 here
-        return e / np.linalg.norm(
-            e
-        ), "  (at norm 1: your answer's scale would blow up its rounding noise)"
     if shown is not None and not _hidden_by_rounding(shown):
         return shown, "  (rescaled to your answer's scale)"
+    e = np.asarray(expected, dtype=float)
     if np.any(e) and np.isfinite(e).all():
         return e / np.linalg.norm(e), "  (unit length; any non-zero scale is accepted)"
     return expected, ""
