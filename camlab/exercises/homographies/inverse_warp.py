@@ -101,6 +101,13 @@ def _bilinear(image, H, out_shape):
     return out
 
 
+def _camlab_bilinear(image, H, out_shape):
+    """camlab's own warp at its default, bilinear (pixels straddling the border blend with 0)."""
+    from ...warp import warp_perspective
+
+    return warp_perspective(np.asarray(image, dtype=float), H, out_shape, interpolation="bilinear")
+
+
 def _cv2_default(image, H, out_shape):
     """cv2.warpPerspective with its default flags: bilinear, with OpenCV's 1/32-pixel fixed-point weights."""
     import cv2
@@ -344,6 +351,13 @@ _WARP_MISTAKES = (
         lambda c: _bilinear(c.image, c.H, c.shape),
         "you interpolated bilinearly: a fine warp, but the prompt asks for nearest neighbour, one source "
         "pixel per output pixel: image[int(np.rint(v)), int(np.rint(u))].",
+    ),
+    Mistake(
+        "camlab's warp, bilinear",
+        lambda c: _camlab_bilinear(c.image, c.H, c.shape),
+        "you warped with camlab.warp.warp_perspective at its default, interpolation='bilinear': a fine "
+        "warp, but the prompt asks for nearest neighbour, one source pixel per output pixel. Pass "
+        "interpolation='nearest', or write the loop: image[int(np.rint(v)), int(np.rint(u))].",
     ),
     Mistake(
         "cv2's default, bilinear",
