@@ -291,7 +291,9 @@ def rescaled_to(got: Any, expected: Any) -> np.ndarray | None:
     ``expected`` beside ``got`` (and naming its worst raw entry) would report differences that are
     only the scale. None when the shapes differ, ``got`` is not finite, either is all zeros, or
     ``got`` points far from ``expected`` (cosine of their angle below 0.9): a far-off answer
-    would stretch ``expected`` to a scale that only confuses.
+    would stretch ``expected`` to a scale that only confuses. None too when ``got`` is over 1e9
+    times longer (a homography divided by an h33 that should be 0): stretched that far, the
+    reference's own rounding noise would print as large numbers.
     """
     try:
         g = np.asarray(got, dtype=float)
@@ -307,6 +309,10 @@ def rescaled_to(got: Any, expected: Any) -> np.ndarray | None:
     ):
         return None
     if abs(np.sum(g * e)) < 0.9 * np.linalg.norm(g) * np.linalg.norm(e):
+        return None
+    if np.linalg.norm(g) > 1e9 * np.linalg.norm(
+        e
+    ):  # h / h33 with h33 ~ 1e-17: its noise would show
         return None
     return e * float(np.sum(g * e) / np.sum(e * e))
 

@@ -101,6 +101,13 @@ def _bilinear(image, H, out_shape):
     return out
 
 
+def _camlab_bilinear(image, H, out_shape):
+    """camlab's own warp at its default, bilinear (pixels straddling the border blend with 0)."""
+    from ...warp import warp_perspective
+
+    return warp_perspective(np.asarray(image, dtype=float), H, out_shape, interpolation="bilinear")
+
+
 def _cv2_default(image, H, out_shape):
     """cv2.warpPerspective with its default flags: bilinear, with OpenCV's 1/32-pixel fixed-point weights."""
     import cv2
@@ -146,6 +153,18 @@ def _indexed_u_v_caught(image, H, out_shape):
         (iu >= 0) & (iu < w) & (iv >= 0) & (iv < h) & (iu < h) & (iv < w)
     )  # passes the test, no IndexError
     return np.where(read, image[np.clip(iu, 0, h - 1), np.clip(iv, 0, w - 1)], 0.0)
+
+
+def _bounds_swapped(image, H, out_shape):
+    """The slip 0 <= iu < image.shape[0] (the height) and 0 <= iv < image.shape[1], an IndexError caught."""
+    image = np.asarray(image, dtype=float)
+    h, w = image.shape[:2]
+    v, u = np.mgrid[0 : out_shape[0], 0 : out_shape[1]]
+    X = np.stack([u, v, np.ones_like(u)], axis=-1) @ np.linalg.inv(np.asarray(H, dtype=float)).T
+    iu, iv = np.rint(X[..., 0] / X[..., 2]).astype(int), np.rint(X[..., 1] / X[..., 2]).astype(int)
+    tested = (iu >= 0) & (iu < h) & (iv >= 0) & (iv < w)  # the swapped test
+    read = tested & (iu < w) & (iv < h)  # beyond the array: IndexError, caught, 0
+    return np.where(read, image[np.clip(iv, 0, h - 1), np.clip(iu, 0, w - 1)], 0.0)
 
 
 def _warp_source_one_based(image, H, out_shape):
@@ -222,6 +241,14 @@ _WARP_MISTAKES = (
         "images are image[row v, column u], so read image[iv, iu] and test 0 <= iu < width and "
         "0 <= iv < height (width = image.shape[1]). If you caught an IndexError, drop the try/except: "
         "it hid the slip.",
+    ),
+    Mistake(
+        "bounds swapped",
+        lambda c: _bounds_swapped(c.image, c.H, c.shape),
+        "you read image[iv, iu] but compared iu with image.shape[0] (the height) and iv with "
+        "image.shape[1] (the width): shape is (height, width), so width = image.shape[1]. The test "
+        "pictures are wider than tall, so columns beyond the height read 0. Test 0 <= iu < "
+        "image.shape[1] and 0 <= iv < image.shape[0] (and drop any try/except that hid the IndexError).",
     ),
     Mistake(
         "no lower bound",
@@ -324,6 +351,13 @@ _WARP_MISTAKES = (
         lambda c: _bilinear(c.image, c.H, c.shape),
         "you interpolated bilinearly: a fine warp, but the prompt asks for nearest neighbour, one source "
         "pixel per output pixel: image[int(np.rint(v)), int(np.rint(u))].",
+    ),
+    Mistake(
+        "camlab's warp, bilinear",
+        lambda c: _camlab_bilinear(c.image, c.H, c.shape),
+        "you warped with camlab.warp.warp_perspective at its default, interpolation='bilinear': a fine "
+        "warp, but the prompt asks for nearest neighbour, one source pixel per output pixel. Pass "
+        "interpolation='nearest', or write the loop: image[int(np.rint(v)), int(np.rint(u))].",
     ),
     Mistake(
         "cv2's default, bilinear",

@@ -53,7 +53,9 @@ def _ransac_figure() -> SimpleNamespace:
     rejected = view.animate(ax.add_collection(LineCollection([], lw=0.5, color=palette.GREY)))
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
-    box_true = view.animate(ax.plot([], [], ":", color="k", lw=2, label="true H (image frame)")[0])
+    box_true = view.animate(  # a wide light band: RANSAC's dashed frame usually lies on it
+        ax.plot([], [], "-", color="0.75", lw=6, label="true H (image frame), under RANSAC's")[0]
+    )
     box_est = view.animate(ax.plot([], [], "--", color="k", lw=1.5, label="RANSAC H")[0])
     best = view.animate(
         ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0]
@@ -305,6 +307,16 @@ def _painted(fwd, inv, inside, reached, pulled):
     return shown, inv
 
 
+def _label_warp_axes(ax_f, ax_z, ax_zi, ax_i):
+    """Titles and axis labels of the four panels: forward, its box enlarged, the inverse's, inverse."""
+    ax_f.set_title("forward: push each source pixel\n(holes black)", fontsize=10, pad=6)
+    ax_z.set_title("forward, yellow box\nenlarged", fontsize=10, pad=6)
+    ax_zi.set_title("inverse, yellow box\nenlarged: no holes", fontsize=10, pad=6)
+    for ax_ in (ax_f, ax_z, ax_zi, ax_i):
+        ax_.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=6)
+
+
 @register(lesson="07", sweep={"scale": [0.6, 1.5, 2.8], "angle": [0.0, 25.0]})
 def forward_vs_inverse() -> Demo:
     """Forward mapping leaves holes where H magnifies; inverse mapping never does.
@@ -319,8 +331,8 @@ def forward_vs_inverse() -> Demo:
     -------
     Demo
         The demo: controls ``scale`` and ``angle`` (the rotation, degrees), the figure (the
-        forward warp with its holes black, the window :data:`ZOOM` of it enlarged, and the
-        inverse warp; outside the picture both are grey) and ``state`` (``H``, source to output pixels,
+        forward warp with its holes black, the window :data:`ZOOM` of it and of the inverse
+        warp enlarged, and the inverse warp; outside the picture both are grey) and ``state`` (``H``, source to output pixels,
         and ``hole_fraction``, the share of the inverse warp's interior pixels, those whose
         four neighbours are covered too, that the forward warp never reaches).
 
@@ -331,30 +343,30 @@ def forward_vs_inverse() -> Demo:
     """
     pic = scenes.house_picture((80, 60))
     out_hw = (180, 240)
-    view = FigureView(figsize=(9.6, 3.6))
-    ax_f, ax_z, ax_i = view.fig.subplots(1, 3, width_ratios=[1, 0.62, 1])
+    view = FigureView(figsize=(10.5, 2.9))
+    ax_f, ax_z, ax_zi, ax_i = view.fig.subplots(1, 4, width_ratios=[1, 0.56, 0.56, 1])
     blank = np.zeros((*out_hw, 3), np.uint8)
     im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
     im_i = view.animate(ax_i.imshow(blank, interpolation="nearest"))
     top, left, h, w = ZOOM
-    im_z = view.animate(
-        ax_z.imshow(
-            blank[:h, :w],
-            interpolation="nearest",
-            extent=(left - 0.5, left + w - 0.5, top + h - 0.5, top - 0.5),
+    im_z, im_zi = (
+        view.animate(
+            ax_.imshow(
+                blank[:h, :w],
+                interpolation="nearest",
+                extent=(left - 0.5, left + w - 0.5, top + h - 0.5, top - 0.5),
+            )
         )
+        for ax_ in (ax_z, ax_zi)
     )
     # animated after the image, or the live frame paints the picture over it
-    view.animate(
-        ax_f.add_patch(
-            Rectangle((left - 0.5, top - 0.5), w, h, fill=False, ec=palette.YELLOW, lw=1.5)
+    for ax_ in (ax_f, ax_i):
+        view.animate(
+            ax_.add_patch(
+                Rectangle((left - 0.5, top - 0.5), w, h, fill=False, ec=palette.YELLOW, lw=1.5)
+            )
         )
-    )
-    ax_f.set_title("forward: push each source pixel\n(holes black)", fontsize=10, pad=6)
-    ax_z.set_title("the yellow box enlarged:\none square per output pixel", fontsize=10, pad=6)
-    for ax_ in (ax_f, ax_z, ax_i):
-        ax_.set(xlabel="u (pixels)", ylabel="v (pixels)")
-    ax_i.set_title("inverse: pull each output pixel", fontsize=10, pad=6)
+    _label_warp_axes(ax_f, ax_z, ax_zi, ax_i)
     readout = W.HTML()
     ones = np.ones(pic.shape[:2], np.uint8)
 
@@ -383,6 +395,7 @@ def forward_vs_inverse() -> Demo:
         shown, inv = _painted(fwd, inv, inside > 0, reached, pulled)
         im_f.set_data(shown)
         im_z.set_data(shown[top : top + h, left : left + w])
+        im_zi.set_data(inv[top : top + h, left : left + w])
         im_i.set_data(inv)
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         holes_inverse = float(np.mean(~pulled[inner])) if inner.any() else 0.0

@@ -206,10 +206,10 @@ def _diagonal_artists(view, ax, before):
         ax.plot(
             *before.T,
             "o",
-            mfc="white",
+            mfc="none",
             mec=palette.BROWN,
             mew=1.5,
-            ms=9,
+            ms=10,
             zorder=4,
             label="cross-ratio points, before H",
         )[0]
@@ -221,8 +221,8 @@ def _diagonal_artists(view, ax, before):
             "o",
             color=palette.BROWN,
             mec="white",
-            mew=0.6,
-            ms=5.5,
+            mew=1.0,
+            ms=7,
             zorder=5,
             label="cross-ratio points, after H",
         )[0]
