@@ -279,6 +279,13 @@ def _diagnosis(args, got, expected) -> str:
             "J Sigma J^T terms, with no square root anywhere."
         )
     if g is not None and g.shape == (3,):
+        d = np.diag(np.asarray(expected, dtype=float))
+        if g.dtype.kind in "fiu" and np.allclose(g, np.sqrt(np.abs(d)), rtol=1e-4, atol=0):
+            return (
+                "you returned 3 one-sigmas (the square roots of the diagonal): return the whole "
+                "(3, 3) covariance, variances on its diagonal, whose off-diagonal terms carry the "
+                "correlations."
+            )
         return (
             "you returned 3 numbers, the variances alone (the diagonal): return the whole (3, 3) "
             "covariance, whose off-diagonal terms carry the correlations (the ellipsoid's tilt)."
@@ -386,6 +393,7 @@ register_exercise(
             (_elementwise_root, "NaN"),
             ((lambda J_A, S_A, J_B, S_B, J_u, s: J_u.T @ J_u), "inputs' space"),
             ((lambda *a: np.diag(point_covariance(*a))), "the variances alone"),
+            ((lambda *a: np.sqrt(np.diag(point_covariance(*a)))), "one-sigmas"),
             (
                 (lambda J_A, S_A, J_B, S_B, J_u, s: (J_A * J_A) @ np.diag(S_A)),
                 "the variances alone",
