@@ -116,7 +116,10 @@ def length_sigma(
     )
 
 
-SIDE_LIM = ((-0.25, 1.6), (-0.1, 1.6))  # the side view's y and height limits, m: every setting fits
+SIDE_LIM = (
+    (-0.25, 1.6),
+    (-0.15, 1.6),
+)  # the side view's y and height limits, m: every setting fits
 
 
 def _side_view(ax) -> SimpleNamespace:
@@ -130,6 +133,7 @@ def _side_view(ax) -> SimpleNamespace:
     ax.axhline(0, color="0.3", lw=1, zorder=1.5)  # the table
     # the board under the animated lines (drawn last in a live frame): a full redraw draws it the same
     ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=3, solid_capstyle="butt", zorder=1.8)
+    ax.text(0.0625, -0.035, "board", fontsize=6, ha="center", va="top", color="0.1")
     (rays,) = ax.plot([], [], "-", color=palette.ORANGE, lw=1)  # the photo's top and bottom rows
     (axis,) = ax.plot([], [], "--", color="0.4", lw=1)  # the optical axis, to the board's centre
     (eye,) = ax.plot([], [], "o", color=palette.ORANGE, ms=6)
