@@ -222,13 +222,19 @@ def _figure() -> SimpleNamespace:
     ax_plot.yaxis.label.set_fontsize(8)
     ax_plot.tick_params(labelsize=7)
     ax_plot.grid(alpha=0.3)
-    # the purple edge's total (thick, pale) under its two parts (purple, dotted and dashed), which add in
-    # quadrature: the picking part nearly coincides with the total
+    # the purple edge's total (thick) under its two parts (purple, dotted and dashed), which add in
+    # quadrature: the picking part nearly coincides with the total, so its dots are outlined in white
     (total,) = ax_plot.plot(
-        [], [], "-", color=palette.PURPLE, lw=5, alpha=0.4, label="along the slope (purple): total"
+        [], [], "-", color=palette.PURPLE, lw=4.5, label="along the slope (purple): total"
     )
     (picks,) = ax_plot.plot(
-        [], [], ":", color=palette.PURPLE, lw=2.0, label="   its part from picking the ends"
+        [],
+        [],
+        ":",
+        color=palette.PURPLE,
+        lw=2.0,
+        path_effects=palette.halo(2.0),
+        label="   its part from picking the ends",
     )
     (pose,) = ax_plot.plot(
         [], [], "--", color=palette.PURPLE, lw=1.2, label="   its part from the pose"
