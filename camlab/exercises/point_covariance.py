@@ -130,6 +130,8 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         picks_diagonal=a + b + sigma_u**2 * np.diag(np.diag(u)),
         picks_halved=a + b + (sigma_u / 2) ** 2 * u,
         sigma_A_twice=a + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
+        cross_own=a + b + sigma_u**2 * u + J_A @ Sigma_A @ J_B.T + J_B @ Sigma_B @ J_A.T,
+        picks_A_only=a + b + sigma_u**2 * J_u[:, :2] @ J_u[:, :2].T,
     )
 
 
@@ -206,6 +208,19 @@ _MISTAKES = (
         lambda c: c.cross,
         "you added a cross term J_A Sigma_A J_B^T: the two poses are solved from different photos and are "
         "independent of each other and of the picks, so Sigma_X has no cross terms, only the three sums.",
+    ),
+    Mistake(
+        "cross terms, each pose's own",
+        lambda c: c.cross_own,
+        "you added cross terms between the poses (J_A Sigma_A J_B^T and J_B Sigma_B J_A^T): the two "
+        "poses are solved from different photos and are independent, so no cross term: Sigma_X is only "
+        "the three J Sigma J^T terms.",
+    ),
+    Mistake(
+        "photo A's picks only",
+        lambda c: c.picks_A_only,
+        "your picking term uses only J_u's first two columns, photo A's pick: photo B's two picked "
+        "coordinates are just as noisy, so use all four columns, sigma_u**2 * J_u @ J_u.T.",
     ),
     Mistake(
         "cross terms",
@@ -358,6 +373,8 @@ register_exercise(
         exception_hint=_exception_hint,
         wrong_variants=(
             (_variant("J_A for both poses"), "its own Jacobian"),
+            (_variant("cross terms, each pose's own"), "no cross term"),
+            (_variant("photo A's picks only"), "all four columns"),
             (_variant("everything averaged"), "do not average"),
             (_variant("sigma_u not squared"), "variance belongs"),
             (_variant("no picking term"), "left out the picking"),
