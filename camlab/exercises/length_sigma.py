@@ -166,6 +166,7 @@ def _context(H_of, Sigma_p, a, b, sigma_u):
         no_pose=np.sqrt(pix2),
         no_pixels=np.sqrt(pose2),
         one_end=np.sqrt(pose2 + sigma_u**2 * g_u[:2] @ g_u[:2]),
+        squared_sum=np.sqrt(pose2 + sigma_u**2 * np.sum(g_u) ** 2),
         sigmas_added=np.sqrt(pose2) + np.sqrt(pix2),
         inverse=np.sqrt(g_p @ np.linalg.inv(Sigma_p) @ g_p + pix2),
         swapped_order=np.sqrt(np.r_[g_p[3:], g_p[:3]] @ Sigma_p @ np.r_[g_p[3:], g_p[:3]] + pix2),
@@ -258,6 +259,12 @@ _MISTAKES = (
         lambda c: c.no_pixels,
         "you left out the picking: the two ends are picked with noise sigma_u per coordinate, which adds "
         "sigma_u^2 |g_u|^2, g_u the length's gradient with respect to the ends' four coordinates.",
+    ),
+    Mistake(
+        "square of the sum",
+        lambda c: c.squared_sum,
+        "your pixel term squares the SUM of g_u: each of the four picked coordinates adds its own "
+        "sigma_u^2 g^2 (they are independent), so the term is sigma_u**2 * (g_u @ g_u), the sum of squares.",
     ),
     Mistake(
         "one end only",
@@ -411,6 +418,7 @@ register_exercise(
             (_variant("no pose term"), "pose's part"),
             (_variant("no pixel term"), "left out the picking"),
             (_variant("one end only"), "only one end"),
+            (_variant("square of the sum"), "sum of squares"),
             (_variant("sigmas added"), "add in variance"),
             (_variant("inverse covariance"), "information matrix"),
             (_variant("parameter order"), "(dt, dw)"),

@@ -275,7 +275,7 @@ def _reach_cases():
 
 
 REACH_RTOL = 1e-6
-"""Exercise 5's relative tolerance: 2.5 um on 2.5 m passes a bisection or float32 answer; the nearest
+"""Exercise 6's relative tolerance (max_depth): 2.5 um on 2.5 m passes a bisection or float32 answer; the nearest
 slip (sqrt(2) sigma_d) is 19 % off."""
 
 
@@ -303,6 +303,7 @@ def _reach_context(f, B, s, e):
         sigma_times=float(np.sqrt(e * f * B * s)),
         no_B=float(np.sqrt(e * f / s)),
         root2_sigma=float(np.sqrt(e * f * B / (np.sqrt(2) * s))),
+        f_outside=float(np.sqrt(e * B / s) * f),
     )
 
 
@@ -423,6 +424,12 @@ _REACH_MISTAKES = (
         "(f B) and Z_max = sqrt(max_error f B / sigma_d).",
     ),
     Mistake(
+        "focal length outside the root",
+        lambda c: c.f_outside,
+        "you multiplied by f outside the square root: f sits under it with B, Z^2 = max_error f B / "
+        "sigma_d, so Z_max = sqrt(max_error * f * B / sigma_d), which grows only as sqrt(f).",
+    ),
+    Mistake(
         "sqrt(2) sigma_d",
         lambda c: c.root2_sigma,
         "you divided by sqrt(2) sigma_d: sigma_d is given already as the DISPARITY's noise (section 3's "
@@ -513,6 +520,7 @@ register_exercise(
             (_reach_variant("sigma_d multiplied"), "multiplied by sigma_d"),
             (_reach_variant("no baseline"), "left out the baseline"),
             (_reach_variant("sqrt(2) sigma_d"), "sqrt(2) sigma_d"),
+            (_reach_variant("focal length outside the root"), "f outside the square root"),
         ),
         teaching=max_depth,
         solution_note=(

@@ -130,6 +130,8 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         picks_diagonal=a + b + sigma_u**2 * np.diag(np.diag(u)),
         picks_halved=a + b + (sigma_u / 2) ** 2 * u,
         sigma_A_twice=a + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
+        cross_own=a + b + sigma_u**2 * u + J_A @ Sigma_A @ J_B.T + J_B @ Sigma_B @ J_A.T,
+        picks_A_only=a + b + sigma_u**2 * J_u[:, :2] @ J_u[:, :2].T,
     )
 
 
@@ -208,6 +210,19 @@ _MISTAKES = (
         "independent of each other and of the picks, so Sigma_X has no cross terms, only the three sums.",
     ),
     Mistake(
+        "cross terms, each pose's own",
+        lambda c: c.cross_own,
+        "you added cross terms between the poses (J_A Sigma_A J_B^T and J_B Sigma_B J_A^T): the two "
+        "poses are solved from different photos and are independent, so no cross term: Sigma_X is only "
+        "the three J Sigma J^T terms.",
+    ),
+    Mistake(
+        "photo A's picks only",
+        lambda c: c.picks_A_only,
+        "your picking term uses only J_u's first two columns, photo A's pick: photo B's two picked "
+        "coordinates are just as noisy, so use all four columns, sigma_u**2 * J_u @ J_u.T.",
+    ),
+    Mistake(
         "cross terms",
         lambda c: c.cross_sym,
         "you added cross terms between the poses (J_A Sigma_A J_B^T and its transpose): the two poses are "
@@ -279,6 +294,13 @@ def _diagnosis(args, got, expected) -> str:
             "J Sigma J^T terms, with no square root anywhere."
         )
     if g is not None and g.shape == (3,):
+        d = np.diag(np.asarray(expected, dtype=float))
+        if g.dtype.kind in "fiu" and np.allclose(g, np.sqrt(np.abs(d)), rtol=1e-4, atol=0):
+            return (
+                "you returned 3 one-sigmas (the square roots of the diagonal): return the whole "
+                "(3, 3) covariance, variances on its diagonal, whose off-diagonal terms carry the "
+                "correlations."
+            )
         return (
             "you returned 3 numbers, the variances alone (the diagonal): return the whole (3, 3) "
             "covariance, whose off-diagonal terms carry the correlations (the ellipsoid's tilt)."
@@ -351,6 +373,8 @@ register_exercise(
         exception_hint=_exception_hint,
         wrong_variants=(
             (_variant("J_A for both poses"), "its own Jacobian"),
+            (_variant("cross terms, each pose's own"), "no cross term"),
+            (_variant("photo A's picks only"), "all four columns"),
             (_variant("everything averaged"), "do not average"),
             (_variant("sigma_u not squared"), "variance belongs"),
             (_variant("no picking term"), "left out the picking"),
@@ -386,6 +410,7 @@ register_exercise(
             (_elementwise_root, "NaN"),
             ((lambda J_A, S_A, J_B, S_B, J_u, s: J_u.T @ J_u), "inputs' space"),
             ((lambda *a: np.diag(point_covariance(*a))), "the variances alone"),
+            ((lambda *a: np.sqrt(np.diag(point_covariance(*a)))), "one-sigmas"),
             (
                 (lambda J_A, S_A, J_B, S_B, J_u, s: (J_A * J_A) @ np.diag(S_A)),
                 "the variances alone",

@@ -129,6 +129,7 @@ def _context(K, R, t, X):
         no_division=np.array([[fx, 0.0, 0.0], [0.0, fy, 0.0]]),
         times_z=z * dpix,
         K_rows=K[:2],
+        K_rows_over_z=K[:2] / z,
         transposed=_reference(K, R.T, t, X),  # the right formula, R.T used for R throughout
         inverted=_inverted(K, R, t, X),
     )
@@ -226,6 +227,13 @@ _MISTAKES = (
         "you took K[:2] as d(u, v)/d X_c: that is the Jacobian of the homogeneous pixel K X_c before the "
         "division by its third entry z. Differentiate u = fx x / z + cx: [[fx/z, 0, -fx x/z^2], "
         "[0, fy/z, -fy y/z^2]].",
+    ),
+    Mistake(
+        "K rows over z",
+        lambda c: c.with_(-_skew(c.RX), c.K_rows_over_z),
+        "you took K[:2] / z as d(u, v)/d X_c: the homogeneous Jacobian divided once, the quotient rule "
+        "dropped. The third column is -(u - c_x)/z = -fx x/z^2 (and -fy y/z^2), not c_x/z: "
+        "[[fx/z, 0, -fx x/z^2], [0, fy/z, -fy y/z^2]].",
     ),
     Mistake(
         "quotient rule without the last /z",
@@ -397,6 +405,7 @@ register_exercise(
         diagnose=_diagnosis,
         wrong_variants=(
             (_variant("skew sign"), "wrong sign: [dw]x"),
+            (_variant("K rows over z"), "quotient rule"),
             (_variant("X for X_c - t"), "world point X"),
             (_variant("X_c for X_c - t"), "used X_c"),
             (_variant("right perturbation"), "on the right"),

@@ -204,6 +204,13 @@ def _diagnosis(args, got, expected) -> str:
             "residual pair; the pose's covariance is 6 x 6, sigma^2 (J^T J)^-1 with J.T @ J."
         )
     if g is not None and g.shape == (6,):
+        d = np.diag(np.asarray(expected, dtype=float))
+        if g.dtype.kind in "fiu" and np.allclose(g, np.sqrt(np.abs(d)), rtol=1e-4, atol=0):
+            return (
+                "you returned 6 one-sigmas (the square roots of the diagonal): return the whole "
+                "(6, 6) covariance, variances on its diagonal, whose off-diagonal terms carry the "
+                "correlations."
+            )
         return (
             "you returned 6 numbers, the variances alone (the diagonal): return the whole (6, 6) "
             "covariance, whose off-diagonal terms carry the correlations between the pose's parameters."
@@ -281,6 +288,7 @@ register_exercise(
             (_variant("sigma from mean |r|"), "mean of |r|"),
             ((lambda J, r: np.sum(r**2) / (len(r) - 6) * J @ J.T), "J J^T"),
             ((lambda J, r: np.diag(pose_covariance(J, r))), "the variances alone"),
+            ((lambda J, r: np.sqrt(np.diag(pose_covariance(J, r)))), "one-sigmas"),
         ),
         teaching=pose_covariance,
         ndarray_only=True,

@@ -116,7 +116,10 @@ def length_sigma(
     )
 
 
-SIDE_LIM = ((-0.25, 1.6), (-0.1, 1.6))  # the side view's y and height limits, m: every setting fits
+SIDE_LIM = (
+    (-0.25, 1.6),
+    (-0.15, 1.6),
+)  # the side view's y and height limits, m: every setting fits
 
 
 def _side_view(ax) -> SimpleNamespace:
@@ -127,8 +130,10 @@ def _side_view(ax) -> SimpleNamespace:
     ax.tick_params(labelsize=7)
     ax.grid(alpha=0.3)
     ax.set_title("side view: the camera (orange)", fontsize=9)
-    ax.axhline(0, color="0.3", lw=1)  # the table
-    ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=3, solid_capstyle="butt", zorder=3)
+    ax.axhline(0, color="0.3", lw=1, zorder=1.5)  # the table
+    # the board under the animated lines (drawn last in a live frame): a full redraw draws it the same
+    ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=3, solid_capstyle="butt", zorder=1.8)
+    ax.text(0.0625, -0.035, "board", fontsize=6, ha="center", va="top", color="0.1")
     (rays,) = ax.plot([], [], "-", color=palette.ORANGE, lw=1)  # the photo's top and bottom rows
     (axis,) = ax.plot([], [], "--", color="0.4", lw=1)  # the optical axis, to the board's centre
     (eye,) = ax.plot([], [], "o", color=palette.ORANGE, ms=6)
@@ -137,7 +142,8 @@ def _side_view(ax) -> SimpleNamespace:
 
 def _plan_view(ax) -> None:
     """The table from above, zoomed on the board: where the two edges lie beside it (static)."""
-    ax.set(xlim=(-0.09, 0.26), ylim=(0.29, -0.05), aspect="equal")  # board x down, as in the photo
+    # seen from above (-z, where the camera is): board y to the right, board x up; right x up = -z
+    ax.set(xlim=(-0.09, 0.26), ylim=(-0.05, 0.31), aspect="equal")
     ax.set_xlabel("board y (m); the camera tilts toward +y", fontsize=8)
     ax.set_ylabel("board x (m)", fontsize=8)
     ax.tick_params(labelsize=7)
@@ -152,7 +158,12 @@ def _plan_view(ax) -> None:
     text = dict(fontsize=7, path_effects=palette.halo(2))
     ax.text(-0.03, 0.1, "board", color="0.1", rotation=90, ha="center", va="center", **text)
     ax.annotate(
-        "along the slope", (0.0625, 0.24), xytext=(-0.08, 0.275), color=palette.PURPLE, **text
+        "along the slope",
+        (0.0625, 0.24),
+        xytext=(-0.08, 0.275),
+        color=palette.PURPLE,
+        va="bottom",
+        **text,
     )
     ax.annotate(
         "across",
@@ -211,15 +222,26 @@ def _figure() -> SimpleNamespace:
     ax_plot.yaxis.label.set_fontsize(8)
     ax_plot.tick_params(labelsize=7)
     ax_plot.grid(alpha=0.3)
-    # the total (thick) under its picking part (dotted, near-black): they nearly coincide
+    # the purple edge's total (thick) under its two parts (purple, dotted and dashed), which add in
+    # quadrature: the picking part nearly coincides with the total, so its dots are outlined in white
     (total,) = ax_plot.plot(
-        [], [], "-", color=palette.PURPLE, lw=4.5, label="along the slope: total"
+        [], [], "-", color=palette.PURPLE, lw=4.5, label="along the slope (purple): total"
     )
     (picks,) = ax_plot.plot(
-        [], [], ":", color="0.1", lw=2.0, label="   its part from picking the ends"
+        [],
+        [],
+        ":",
+        color=palette.PURPLE,
+        lw=2.0,
+        path_effects=palette.halo(2.0),
+        label="   its part from picking the ends",
     )
-    (pose,) = ax_plot.plot([], [], "--", color="0.45", label="   its part from the pose")
-    (across,) = ax_plot.plot([], [], "-", color=palette.BROWN, label="across the slope: total")
+    (pose,) = ax_plot.plot(
+        [], [], "--", color=palette.PURPLE, lw=1.2, label="   its part from the pose"
+    )
+    (across,) = ax_plot.plot(
+        [], [], "-", color=palette.BROWN, label="across the slope (brown): total"
+    )
     (here,) = ax_plot.plot(
         [], [], "o", mfc="none", mec="0.1", mew=1.5, ms=7, label="this tilt (both edges)"
     )
@@ -312,6 +334,7 @@ def plane_error() -> Demo:
             f"σ of the 0.2 m edge along the slope (purple):  {1000 * now.sigma:5.2f} mm\n"
             f"  its part from the pose:                      {1000 * now.pose:5.2f} mm\n"
             f"  its part from picking the ends ({pick:4.2f} px):    {1000 * now.pixels:5.2f} mm\n"
+            "  (the two parts add in quadrature: total² = pose² + picking²)\n"
             f"σ of the 0.2 m edge across the slope (brown):  {1000 * now_x.sigma:5.2f} mm"
         )
 
@@ -407,11 +430,11 @@ def _ray_figure() -> SimpleNamespace:
     ax.set(xlim=(-6, 6), ylim=(-10, 10), aspect="equal")
     ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
     ax.set_ylabel("depth, along the bisector (mm)", fontsize=8)
-    ax_law.set(xlim=(0, 122), ylim=(0.02, 20), yscale="log")
+    ax_law.set(xlim=(0, 124), ylim=(0.02, 20), yscale="log")  # room for the ring at 120 deg
     ax_law.set_xlabel("angle α between the rays (deg)", fontsize=8)
     ax_law.set_ylabel("one σ of the point (mm, log scale)", fontsize=8)
     ax_law.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))
-    ax_law.set_title("the two laws at this picking σ", fontsize=9)
+    ax_law.set_title(" ", fontsize=9)  # c, set by update
     for a in (ax, ax_law):
         a.tick_params(labelsize=7)
         a.grid(alpha=0.3)
@@ -423,17 +446,17 @@ def _ray_figure() -> SimpleNamespace:
     ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
     ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
     ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
-    (f.law_depth,) = ax_law.plot(
-        [], [], "-", color=palette.BLUE, lw=2, label="σ depth = c / sin(α/2)"
-    )
+    (f.law_depth,) = ax_law.plot([], [], "-", color="0.1", lw=1.5, label="σ depth = c / sin(α/2)")
     (f.law_across,) = ax_law.plot(
-        [], [], "--", color=palette.BLUE, lw=1.5, label="σ across = c / cos(α/2)"
+        [], [], "--", color="0.1", lw=1.5, label="σ across = c / cos(α/2)"
     )
     (f.here,) = ax_law.plot([], [], "o", mfc="none", mec="0.1", mew=1.5, ms=7, label="this α")
     handles = ax.get_legend_handles_labels()[0] + ax_law.get_legend_handles_labels()[0]
     view.fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=7)
     ax.set_title(" ", fontsize=9)
     view.animate(*f.rays, *f.bands, f.ellipse, f.axes_, ax.title, f.law_depth, f.law_across, f.here)
+    view.animate(ax_law.title)
+    f.ax_law = ax_law
     return f
 
 
@@ -457,7 +480,7 @@ def ray_angle() -> Demo:
     readout = W.HTML()
     ring = np.linspace(0, 2 * np.pi, 181)
     k95 = np.sqrt(5.991)  # chi^2 with 2 degrees of freedom, 95 %: the 2-D ellipse, not 1.96
-    rays, bands, ax = fig.rays, fig.bands, fig.ax
+    rays, bands, ax, ax_law = fig.rays, fig.bands, fig.ax, fig.ax_law
 
     def update(v, state):
         half = np.radians(v["alpha"]) / 2
@@ -478,6 +501,7 @@ def ray_angle() -> Demo:
             [-k95 * across, k95 * across, np.nan, 0, 0], [0, 0, np.nan, -k95 * depth, k95 * depth]
         )
         ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px")
+        ax_law.title.set_text(f"the two laws, c = {c:.3f} mm at {v['pick']:.2f} px picks")
         in_frame = bool(k95 * depth <= 10 and k95 * across <= 6)
         state.update(depth_mm=depth, across_mm=across, in_frame=in_frame)
         readout.value = monospace(
