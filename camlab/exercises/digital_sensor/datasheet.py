@@ -9,7 +9,7 @@ import numpy as np
 from ... import sensor
 from .._answers import SameArray, Tolerance, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
-from ._datasheet_slips import AXIS_AND_SIGN_SLIPS
+from ._datasheet_slips import AXIS_AND_SIGN_SLIPS, EQUIVALENT_OVER_FULL_WIDTH
 
 # -- intrinsics_from_datasheet -----------------------------------------------------------------
 
@@ -333,6 +333,7 @@ _MISTAKES = (
             f"35 mm-equivalent focal length, a field of view; K needs the real one, f_x = f / s_x"
         ),
     ),
+    EQUIVALENT_OVER_FULL_WIDTH,
     Mistake(
         "W - 1 pixels",
         lambda s: (
