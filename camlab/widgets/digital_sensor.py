@@ -441,10 +441,10 @@ def _model_snr(n: float, read_noise: float, step: float, full_scale: float) -> t
     noise = np.sqrt(n + read_noise**2)
     snr = float(n / np.sqrt(n + read_noise**2 + step**2 / 12))
     if n >= full_scale:
-        return snr, f"saturated (above full scale {full_scale:.0f} e-)"
+        return snr, f"saturated (> full scale {full_scale:.0f} e-)"
     if step > noise:
         dn = f"{step:.0f}" if step >= 100 else f"{step:.3g}"
-        return snr, f"-- (1 DN = {dn} e- > noise {noise:.3g} e-: no Δ²/12 model)"
+        return snr, f"-- (1 DN = {dn} e- > noise {noise:.3g} e-)"
     return snr, f"{snr:.1f}"
 
 
@@ -467,15 +467,14 @@ def _snr_readout(expo, read_noise, step, full_scale, bg, clipped) -> SimpleNames
     elif one_code >= 0.9:
         why = f"{np.floor(1e4 * one_code) / 100:.2f} % on one code: banding, not noise"
     elif step > noise_bg:
-        why = f"1 DN > noise: its pixels toss between {np.unique(bg).size} codes"
+        why = f"1 DN > noise: pixels toss between {np.unique(bg).size} codes"
     else:
         why = None
     measured = np.inf if why else float(bg.mean() / bg.std())
     text = (
-        f"model SNR {half_text} at half of white\n"
-        f"grey background: model SNR {model_text}, measured "
-        + (f"-- ({why})" if why else f"{measured:.1f}")
-        + "\n"
+        f"model SNR at half of white: {half_text}\n"
+        f"grey background: model SNR {model_text}\n"
+        f"  measured SNR " + (f"-- ({why})" if why else f"{measured:.1f}") + "\n"
     )
     state = dict(
         snr=float(
