@@ -567,6 +567,7 @@ register_exercise(
                 lambda d, f: _dark_form(d, f, lambda g, v, m: np.sqrt(g * v)),
                 "belongs outside the root",
             ),
+            (lambda d, f: _dark_form(d, f, lambda g, v, m: g**2 * np.sqrt(v)), "by g twice"),
             (lambda d, f: _dark_form(d, f, lambda g, v, m: g * np.sqrt(m)), "as a Poisson signal"),
             (lambda d, f: _dark_form(d, f, lambda g, v, m: np.sqrt(g * m)), "offset with no shot"),
             (lambda d, f: reference(d, f) ** [1, 2], "returned a variance"),

@@ -484,6 +484,12 @@ register_exercise(
         wrong_variants=(
             (
                 lambda f, s, n: _datasheet_variant(
+                    f, s, n, fx=f * 43.27 / np.hypot(*s) * n[0] / 36
+                ),
+                "f_eq * W / 36",
+            ),
+            (
+                lambda f, s, n: _datasheet_variant(
                     f, s, n, fx=f * n[0] / np.hypot(*s), fy=f * n[1] / np.hypot(*s)
                 ),
                 "the diagonal belongs to neither axis",

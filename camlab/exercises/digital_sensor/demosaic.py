@@ -534,6 +534,12 @@ register_exercise(
         ndarray_only=True,
         wrong_variants=(
             (lambda raw, pattern: sensor.demosaic_bilinear(raw, "RGGB"), "you ignored `pattern`"),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(
+                    np.asarray(raw).astype(np.uint8), pattern
+                ),
+                "casting it to uint8",
+            ),
             (_zero_padded_demosaic, "border"),
             (lambda raw, pattern: opencv_demosaic(raw, pattern[::-1]), "an old Bayer name"),
             (
