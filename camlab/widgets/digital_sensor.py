@@ -362,7 +362,7 @@ def analogue_gain(iso: float, bits: int, full_well: float = 10000.0) -> float:
     already has its own code; in this model, where all the read noise comes before the amplifier,
     more analogue gain adds no information, so it stops there (higher ISOs only multiply the numbers
     afterwards). Real cameras often raise the analogue gain further, because gain before the
-    converter lowers the converter's own noise counted in electrons (EMVA 1288; Janesick).
+    converter lowers the converter's own noise counted in electrons (Janesick; R. N. Clark).
 
     Parameters
     ----------
