@@ -716,3 +716,29 @@ def test_bit_depth_readout_says_one_code_where_the_background_has_no_spread():
     demo.set(bits=8)  # here the noise spans several codes and the measurement agrees with the model
     model, measured = demo.state["snr_background"]
     assert demo.state["background_one_code"] < 0.5 and abs(measured - model) < 0.5
+
+
+def test_bit_depth_readout_flags_saturation_and_a_coin_flip_between_codes():
+    """N12-2, O12-2: no SNR for levels above full scale, none measured on a clipped background.
+
+    N12-5: none measured where one DN exceeds the background's noise (its pixels toss between two codes).
+    """
+    demo = digital_sensor.bit_depth_and_noise()
+
+    def readout():
+        return "".join(t for t in _texts(demo.widget) if "levels" in t)
+
+    demo.set(bits=8, iso=16.0)  # exposure 0.3: 3000 e- on the white, full scale 625 e-
+    assert demo.state["full_scale"] == pytest.approx(625)
+    assert 0.1 < demo.state["background_clipped"] < 0.25 and np.isinf(
+        demo.state["snr_background"][1]
+    )
+    assert "saturated (> full scale 625 e-)" in readout()
+    assert "clipped at full scale" in readout()
+    demo.set(iso=1.0, exposure=0.01)  # 20 e- in the background, 1 DN = 39 e-, noise 6.7 e-
+    assert demo.state["noise_background"] == pytest.approx(np.sqrt(20 + 25))
+    assert np.isinf(demo.state["snr_background"][1]) and "toss between 2 codes" in readout()
+    assert demo.state["background_one_code"] < 0.9  # the 90 % rule alone let this through
+    demo.set(iso=16.0)  # 1 DN = 2.45 e-: the measurement is back and agrees with the model
+    model, measured = demo.state["snr_background"]
+    assert demo.state["background_reason"] is None and abs(measured - model) < 0.2

@@ -361,6 +361,11 @@ def _dark_slip(args, gain: float, got: float, dark_var: float) -> str | None:
     black = _dark_mean(args[0])
     slips = (
         (
+            gain**2 * np.sqrt(dark_var),
+            "you multiplied by g twice, g**2 * sqrt(var(d1 - d2) / 2): sqrt(var) is in DN, and one factor g "
+            "(electrons per DN) makes it electrons",
+        ),
+        (
             gain * dark_var,
             "you multiplied the darks' variance var(d1 - d2) / 2 by g without its square root: the read noise "
             "is a standard deviation, g * sqrt(var(d1 - d2) / 2)",
@@ -382,7 +387,11 @@ def _dark_slip(args, gain: float, got: float, dark_var: float) -> str | None:
             f"the black level, an offset with no shot noise; the read noise is g * sqrt(var(d1 - d2) / 2)",
         ),
     )
-    return next((hint for value, hint in slips if np.isclose(got, value, rtol=0.03)), None)
+    # the closest slip within 3 %: on one input two slips can lie close (g**2 sqrt(var) and g sqrt(black))
+    close = [
+        (abs(got / value - 1), hint) for value, hint in slips if np.isclose(got, value, rtol=0.03)
+    ]
+    return min(close)[1] if close else None
 
 
 def _read_noise_hint(args, got) -> str:
@@ -558,6 +567,7 @@ register_exercise(
                 lambda d, f: _dark_form(d, f, lambda g, v, m: np.sqrt(g * v)),
                 "belongs outside the root",
             ),
+            (lambda d, f: _dark_form(d, f, lambda g, v, m: g**2 * np.sqrt(v)), "by g twice"),
             (lambda d, f: _dark_form(d, f, lambda g, v, m: g * np.sqrt(m)), "as a Poisson signal"),
             (lambda d, f: _dark_form(d, f, lambda g, v, m: np.sqrt(g * m)), "offset with no shot"),
             (lambda d, f: reference(d, f) ** [1, 2], "returned a variance"),

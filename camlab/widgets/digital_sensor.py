@@ -169,7 +169,9 @@ def pixel_pitch():
         readout.value = monospace(
             f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
             f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
-            f"horizontal FOV {fov:.1f}°\n  = {left:.1f}° left + {right:.1f}° right of the axis"
+            # two decimals, the total the sum of the parts as printed, so the line adds up
+            f"horizontal FOV {round(left, 2) + round(right, 2):.2f}°\n"
+            f"  = {left:.2f}° left + {right:.2f}° right of the axis"
         )
 
     return build_demo(
@@ -263,8 +265,8 @@ def sampling_aliasing():
     )
     # A square grid samples each axis separately: the alias-free region is a square (|fx|, |fy| < 1/2 cycle per
     # coarse px), not a circle; the zone plate's local frequency is (x, y) k / pi, so the square is |x|, |y| < r.
-    # thin, half-transparent short dashes with long gaps: the fold's grey ring systems, centred on the square's
-    # sides, show between and through them
+    # dashes with a white halo, as section 4's figure draws its limits: visible over the busy point samples at
+    # every pixel size, with gaps through which the fold's grey ring systems on the square's sides show
     nyq = ax_s.add_patch(
         Rectangle(
             (0, 0),
@@ -272,9 +274,9 @@ def sampling_aliasing():
             1,
             fill=False,
             color=palette.RED,
-            ls=(0, (4, 5)),
-            lw=1.2,
-            alpha=0.7,
+            ls=(0, (4, 3)),
+            lw=1.8,
+            path_effects=palette.halo(1.8),
         )
     )
     # pixel sizes that do not divide 384 leave a strip unsampled: grey, no sample's black or white
@@ -357,8 +359,10 @@ def analogue_gain(iso: float, bits: int, full_well: float = 10000.0) -> float:
 
     The converter's full scale is ``full_well / gain`` electrons, so one DN is
     ``full_well / (gain (2**bits - 1))`` electrons. Beyond 1 electron per DN every electron
-    already has its own code, so cameras stop amplifying there (higher ISOs only multiply the
-    numbers afterwards, which adds no information).
+    already has its own code; in this model, where all the read noise comes before the amplifier,
+    more analogue gain adds no information, so it stops there (higher ISOs only multiply the numbers
+    afterwards). Real cameras often raise the analogue gain further, because gain before the
+    converter lowers the converter's own noise counted in electrons (Janesick; R. N. Clark).
 
     Parameters
     ----------
@@ -427,6 +431,64 @@ def _noise_figure(view: FigureView) -> SimpleNamespace:
     return SimpleNamespace(clean=clean, im=im, prof=prof, ax_p=ax_p, row=row)
 
 
+def _model_snr(n: float, read_noise: float, step: float, full_scale: float) -> tuple[float, str]:
+    """Section 3's SNR model at ``n`` electrons and the readout's words for it.
+
+    ``"saturated"`` where ``n`` reaches the converter's full scale (every such pixel reads the top
+    code), ``"--"`` with the reason where one DN exceeds the noise (the Delta^2/12 term treats rounding
+    as random noise, which fails there), else the value.
+    """
+    noise = np.sqrt(n + read_noise**2)
+    snr = float(n / np.sqrt(n + read_noise**2 + step**2 / 12))
+    if n >= full_scale:
+        return snr, f"saturated (> full scale {full_scale:.0f} e-)"
+    if step > noise:
+        dn = f"{step:.0f}" if step >= 100 else f"{step:.3g}"
+        return snr, f"-- (1 DN = {dn} e- > noise {noise:.3g} e-)"
+    return snr, f"{snr:.1f}"
+
+
+def _snr_readout(expo, read_noise, step, full_scale, bg, clipped) -> SimpleNamespace:
+    """The bit-depth demo's SNR lines and state: the model at half of white, model and measurement in the background.
+
+    ``bg`` holds the grey background's codes, ``clipped`` the share of it above full scale. No SNR is
+    measured where more than 2 % of it is clipped (the clipped pixels narrow the spread), where 90 % or more of it sits on one code (the
+    spread rests on a few stray pixels: banding, not noise), or where one DN exceeds its noise (its
+    pixels toss between two codes, and the spread measures the rounding).
+    """
+    full_well = 10000.0
+    _, half_text = _model_snr(0.5 * expo * full_well, read_noise, step, full_scale)
+    n_bg = BACKGROUND * expo * full_well
+    model_bg, model_text = _model_snr(n_bg, read_noise, step, full_scale)
+    noise_bg = float(np.sqrt(n_bg + read_noise**2))
+    one_code = float(np.unique(bg, return_counts=True)[1].max() / bg.size)
+    if clipped > 0.02:
+        why = f"{clipped:.0%} clipped at full scale"
+    elif one_code >= 0.9:
+        why = f"{np.floor(1e4 * one_code) / 100:.2f} % on one code: banding, not noise"
+    elif step > noise_bg:
+        why = f"1 DN > noise: pixels toss between {np.unique(bg).size} codes"
+    else:
+        why = None
+    measured = np.inf if why else float(bg.mean() / bg.std())
+    text = (
+        f"model SNR at half of white: {half_text}\n"
+        f"grey background: model SNR {model_text}\n"
+        f"  measured SNR " + (f"-- ({why})" if why else f"{measured:.1f}") + "\n"
+    )
+    state = dict(
+        snr=float(
+            0.5 * expo * full_well / np.sqrt(0.5 * expo * full_well + read_noise**2 + step**2 / 12)
+        ),
+        snr_background=(model_bg, measured),
+        background_one_code=one_code,
+        background_clipped=clipped,
+        noise_background=noise_bg,
+        background_reason=why,
+    )
+    return SimpleNamespace(text=text, state=state)
+
+
 @register(
     lesson="03",
     sweep={
@@ -447,9 +509,11 @@ def bit_depth_and_noise():
         to 1 e-/DN, :func:`analogue_gain`) and ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
         the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` the recorded
         image's rms difference from the true one, linear, over the whole frame, as a fraction of white, ``electrons`` of the white, the dark uniform and the background,
-        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``shown_row`` its recording as the profile shows it (sRGB), ``codes`` how many codes the frame uses, ``gain`` the analogue gain, ``snr_background`` the model's and the
-        measured SNR in the grey background, inf where 90 % or more of it has one code, and
-        ``background_one_code`` that share).
+        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``shown_row`` its recording as the profile shows it (sRGB), ``codes`` how many codes the frame uses, ``gain`` the analogue gain, ``full_scale`` the converter's full scale in
+        electrons, ``snr_background`` the model's and the measured SNR in the grey background,
+        the measurement inf where :func:`_snr_readout` measures none (``background_reason`` says why),
+        ``background_one_code`` the share on its commonest code, ``background_clipped`` the share
+        clipped at the top code and ``noise_background`` its noise in electrons).
     """
     controls = _noise_controls()
     view = FigureView(figsize=(9, 4))
@@ -472,26 +536,19 @@ def bit_depth_and_noise():
         shown = np.clip(sensor.dequantise(dn, bits) / min(1.0, gain * expo), 0, 1)
         im.set_data(sensor.gamma_encode(shown))
         prof.set_ydata(sensor.gamma_encode(shown[row]))
-        signal = 0.5 * expo * full_well
         step = full_well / gain / (2**bits - 1)  # one DN in electrons: section 3's g at this gain
-        snr = signal / np.sqrt(signal + values["read_noise"] ** 2 + step**2 / 12)
-        # measured where the truth is flat, the grey background: mean over spread, against the model there
-        n_bg, flat = BACKGROUND * expo * full_well, shown[clean == BACKGROUND]
-        model_bg = n_bg / np.sqrt(n_bg + values["read_noise"] ** 2 + step**2 / 12)
-        # the share of the background on its commonest code: at 90 % or more the spread rests on a few stray
-        # pixels (4 bits: about 1 in 10^4), so no SNR is measured (and a float std of equal values is ~1e-17)
-        one_code = float(
-            np.unique(dn[clean == BACKGROUND], return_counts=True)[1].max() / flat.size
-        )
-        measured_bg = np.inf if one_code >= 0.9 else float(flat.mean() / flat.std())
+        bg = dn[clean == BACKGROUND]
+        clipped = float(
+            np.mean(noisy[clean == BACKGROUND] * gain >= 1)
+        )  # above full scale before the rounding
         electrons = {
             "white": expo * full_well,
             "uniform": float(clean[row, UNIFORM].mean()) * expo * full_well,
             "background": BACKGROUND * expo * full_well,
         }
+        snr = _snr_readout(expo, float(values["read_noise"]), step, full_well / gain, bg, clipped)
         state.update(
             levels=2**bits,
-            snr=float(snr),
             rms_error=float(np.sqrt(np.mean((shown - clean) ** 2))),
             electrons=electrons,
             dn_electrons=step,
@@ -499,13 +556,16 @@ def bit_depth_and_noise():
             shown_row=sensor.gamma_encode(shown[row]),
             codes=int(np.unique(dn).size),
             gain=gain,
-            snr_background=(float(model_bg), measured_bg),
-            background_one_code=one_code,
+            full_scale=full_well / gain,
+            **snr.state,
         )
         dn = f"{step:.{max(0, 2 - int(np.floor(np.log10(step))))}f}"  # 3 significant figures: 11.8, 0.733, 3000
+        clips = (
+            f" > full scale {full_well / gain:.0f}" if electrons["white"] > full_well / gain else ""
+        )
         ax_p.set_title(
             f"row {row} (blue ticks): recorded (blue) against true (wide grey)\n"
-            f"electrons: white {electrons['white']:.0f}, dark uniform {electrons['uniform']:.1f}, "
+            f"e-: white {electrons['white']:.0f}{clips}, dark uniform {electrons['uniform']:.1f}, "
             f"1 DN = {dn}",
             fontsize=9,
         )
@@ -513,15 +573,8 @@ def bit_depth_and_noise():
             f"{2**bits} levels; analogue gain {gain:.2f}"
             + (" (capped: 1 e-/DN)" if gain < float(values["iso"]) else "")
             + f", full scale {full_well / gain:.0f} e-\n"
-            f"model SNR {snr:.1f} at half of white\n"
-            f"grey background: model SNR {model_bg:.1f}, measured "
-            + (
-                f"-- ({np.floor(1e4 * one_code) / 100:.2f} % on one code: banding, not noise)"
-                if np.isinf(measured_bg)
-                else f"{measured_bg:.1f}"
-            )
-            + "\n"
-            f"rms error against the true image {state['rms_error']:.3f}\n(linear, whole frame; 1 = white)"
+            + snr.text
+            + f"rms error against the true image {state['rms_error']:.3f}\n(linear, whole frame; 1 = white)"
         )
 
     return build_demo(

@@ -1,4 +1,4 @@
-"""Two more slips of lesson 03's datasheet exercise (reviews G12-8, F12-7), rows of its mistake table.
+"""Three more slips of lesson 03's datasheet exercise (reviews G12-8, F12-7, N12-7), rows of its mistake table.
 
 Each row reads the context :mod:`.datasheet` builds: ``g`` the answer, ``f_mm``, ``w_mm``, ``h_mm``,
 ``W``, ``H``, ``cx``, ``cy``.
@@ -40,3 +40,18 @@ AXIS_AND_SIGN_SLIPS = (
     ),
 )
 """The diagonal divided by each axis's pixel count; the principal point with its sign flipped."""
+
+
+EQUIVALENT_OVER_FULL_WIDTH = Mistake(
+    "35 mm-equivalent focal length over a full frame's width",
+    lambda s: np.isclose(
+        s.g[0, 0], s.f_mm * np.hypot(36, 24) / np.hypot(s.w_mm, s.h_mm) * s.W / 36, rtol=0.02
+    ),
+    lambda s: (
+        f"f_x is f_eq * W / 36 = {s.g[0, 0]:.0f} px: you used the 35 mm-equivalent focal length "
+        f"(f_eq = {s.f_mm * np.hypot(36, 24) / np.hypot(s.w_mm, s.h_mm):.1f} mm here) with a full frame's 36 mm "
+        f"width. Both belong to a 36 x 24 mm sensor, and this one's aspect differs; K needs the real focal "
+        f"length over the real pitch, f_x = f / s_x = {s.f_mm} mm / ({s.w_mm} mm / {s.W})"
+    ),
+)
+"""The 35 mm-equivalent focal length over a full frame's 36 mm width: f_x = f_eq W / 36 (review N12-7)."""

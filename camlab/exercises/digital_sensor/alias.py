@@ -15,6 +15,9 @@ def _alias_cases():
         (np.array([1.0, 1.3, 1.75, 2.2, 3.6]),),  # beyond 1 cycle per pixel
         (np.array([-0.2, -0.7, -1.4, 0.5]),),  # negative: a cosine at -f is the one at f
         (np.array([[0.2, 0.8], [1.3, -0.7]]),),  # 2-D: a loop over np.ravel(f) loses the shape
+        (
+            np.random.default_rng(3).uniform(-3, 3, 7),
+        ),  # any real: an answer rounded to a few decimals fails
         (np.float64(0.8),),  # one number (0-d): the answer is one number too
     ]
 
@@ -119,6 +122,12 @@ def _alias_diagnosis(args, got, expected) -> str:
         cause = first_mistake(_ALIAS_SLIPS, f, g, lambda a, b: np.allclose(a, b, atol=1e-9))
     if cause:
         return cause
+    rounded = [k for k in (1, 2, 3) if np.allclose(g, np.round(expected, k), rtol=0, atol=1e-9)]
+    if rounded:
+        return (
+            f"right, but rounded to {rounded[0]} decimals: the folded frequency is a real number (f = 1.2345 "
+            f"shows 0.2345); return it unrounded"
+        )
     if np.any(g < -1e-9) or np.any(g > 0.5 + 1e-9):
         return (
             "the samples can only show frequencies from 0 to 1/2 cycle per pixel: f + m and m - f (m whole) "
@@ -182,6 +191,7 @@ register_exercise(
             (lambda f: tuple(np.ravel(sensor.alias_frequency(f))), "wrap the values in np.array"),
             (lambda f: sensor.alias_frequency(f).astype(int), "your answer is integer"),
             (lambda f: np.array([min(x % 1, 1 - x % 1) for x in np.ravel(f)]), "f's shape"),
+            (lambda f: np.round(sensor.alias_frequency(f), 2), "rounded to 2 decimals"),
         ),
         teaching=alias_frequency,
         exception_hint=_alias_exception_hint,

@@ -9,7 +9,7 @@ import numpy as np
 from ... import sensor
 from .._answers import SameArray, Tolerance, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
-from ._datasheet_slips import AXIS_AND_SIGN_SLIPS
+from ._datasheet_slips import AXIS_AND_SIGN_SLIPS, EQUIVALENT_OVER_FULL_WIDTH
 
 # -- intrinsics_from_datasheet -----------------------------------------------------------------
 
@@ -333,6 +333,7 @@ _MISTAKES = (
             f"35 mm-equivalent focal length, a field of view; K needs the real one, f_x = f / s_x"
         ),
     ),
+    EQUIVALENT_OVER_FULL_WIDTH,
     Mistake(
         "W - 1 pixels",
         lambda s: (
@@ -481,6 +482,12 @@ register_exercise(
         diagnose=_datasheet_diagnosis,
         ndarray_only=True,  # the prompt asks for a numpy array, as every other matrix exercise does
         wrong_variants=(
+            (
+                lambda f, s, n: _datasheet_variant(
+                    f, s, n, fx=f * 43.27 / np.hypot(*s) * n[0] / 36
+                ),
+                "f_eq * W / 36",
+            ),
             (
                 lambda f, s, n: _datasheet_variant(
                     f, s, n, fx=f * n[0] / np.hypot(*s), fy=f * n[1] / np.hypot(*s)

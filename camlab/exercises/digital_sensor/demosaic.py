@@ -240,6 +240,11 @@ def _demosaic_diagnosis(args, got, expected) -> str:
     cause = first_mistake(_IMAGE_MISTAKES, context)
     if cause:
         return cause
+    if not np.issubdtype(np.asarray(raw).dtype, np.integer) and not g.any() and np.abs(e).max() > 0:
+        return (
+            "every value you returned is 0: this mosaic holds fractions 0 to 1, and casting it to uint8 "
+            "(as cv2.cvtColor needs) turns them all into 0; work on the float mosaic, c = k * (m r) / (k * m)"
+        )
     whole = "the mean of two samples falls between codes (100 and 101 give 100.5)"
     if np.issubdtype(np.asarray(got).dtype, np.integer):
         return (
@@ -307,7 +312,7 @@ def _ring_only(raw, got, expected) -> str | None:
     )
     return (
         f"right inside, wrong only on the outermost ring of pixels: this is OpenCV's cv2.cvtColor "
-        f"with a COLOR_Bayer code{codes}, which fills that ring its own way (the Pitfalls: up to 121 DN off on the "
+        f"with a COLOR_Bayer code{codes}, which fills that ring its own way (the Pitfalls measure how far off it lies on the "
         f"lesson's photo). Write the normalised convolution yourself, on the float mosaic, c = k * (m r) / (k * m) "
         f"with zeros beyond the border, so the edge pixels average only the neighbours that exist"
     )
@@ -529,6 +534,12 @@ register_exercise(
         ndarray_only=True,
         wrong_variants=(
             (lambda raw, pattern: sensor.demosaic_bilinear(raw, "RGGB"), "you ignored `pattern`"),
+            (
+                lambda raw, pattern: sensor.demosaic_bilinear(
+                    np.asarray(raw).astype(np.uint8), pattern
+                ),
+                "casting it to uint8",
+            ),
             (_zero_padded_demosaic, "border"),
             (lambda raw, pattern: opencv_demosaic(raw, pattern[::-1]), "an old Bayer name"),
             (
