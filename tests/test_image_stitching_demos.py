@@ -272,6 +272,28 @@ def test_focal_check_names_a_sign_flip_hidden_by_abs():
     assert "test input 8 of 8" in str(info.value) and "NaN" in str(info.value)
 
 
+@pytest.mark.parametrize(
+    ("value", "cause"),
+    [
+        (0.0, "not 0. 0 is what sqrt(f^2 + 0j).real"),
+        (float("inf"), "not inf. Infinity is no focal"),
+        (-1.0, "not -1. A negative focal"),
+        ("complex", "sqrt(f^2 + 0j).real"),
+        (None, "not None"),
+    ],
+)
+def test_focal_check_names_a_sentinel_for_the_non_rotation(value, cause):
+    """S12: 0, inf, -1, sqrt(f^2 + 0j).real or None where f^2 <= 0 is named as that, not "the same number
+    twice" or "got tuple"."""
+    from camlab.exercises.image_stitching.focal import _sentinel_student
+
+    with pytest.raises(AssertionError, match="this H is not a rotation") as info:
+        ex.check_focal_from_rotation_homography(_sentinel_student(value))
+    message = str(info.value)
+    assert "test input 8 of 8" in message and cause in message
+    assert "same number twice" not in message and "got tuple" not in message
+
+
 @pytest.mark.parametrize("formula", ["c1", "c2", "r1", "r2"])
 def test_focal_check_names_a_sign_flip_in_any_one_formula(formula):
     from camlab.exercises.image_stitching.focal import _flipped
