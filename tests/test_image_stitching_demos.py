@@ -156,6 +156,18 @@ def test_blending_demo_seam_steps():
     assert d.state["seam_own"] < 2 < d.state["seam_jump"]  # what is left is the scene's own step
 
 
+def test_blending_demo_registration_error_ghosts_feathering_only():
+    """R12: the slider shows where multi-band beats feathering: view 2 moved 8 px, feathering loses detail."""
+    d = demos.blending_seams()
+    d.set(method="feather", gains=True, offset=0)
+    assert d.state["kept"] == 1.0
+    aligned = d.state["image"]
+    d.set(offset=8)
+    assert d.state["kept"] < 0.9 and (d.state["image"] != aligned).any()
+    d.set(method="multiband")
+    assert d.state["kept"] > 0.97
+
+
 def test_parallax_demo_residuals_grow_with_baseline():
     d = demos.parallax_ghosting()
     d.set(baseline=0.0)
