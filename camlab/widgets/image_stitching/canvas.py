@@ -737,7 +737,8 @@ def _parallax_texts(
     )
     readout = monospace(
         f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
-        f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {rms:.2f} px\n"
+        f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\noutliers: {n - k} (parallax shows here)\n"
+        f"inlier RMS: {rms:.2f} px\n"
         f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
         + (
             "edges of the two warped views (not of the blend):\n"
