@@ -96,7 +96,7 @@ def feature_matches() -> Demo:
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
-        thinned = f"1 in {every} of each colour drawn (red dashed)"
+        thinned = f"1 line in {every} drawn per colour; wrong ones dashed"
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
             f"of the true H), {nbad} wrong (red)\n{thinned}"
