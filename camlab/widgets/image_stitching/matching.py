@@ -212,7 +212,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="matches per bin (tallest = 1)\ngreen: inliers, red: rejected",
+        ylabel="matches per bin, scaled: tallest = 1\n(counts in the text above)\ngreen: inliers, red: rejected",
         xscale="log",
         xlim=(
             0.013,
