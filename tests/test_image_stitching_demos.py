@@ -156,6 +156,18 @@ def test_blending_demo_seam_steps():
     assert d.state["seam_own"] < 2 < d.state["seam_jump"]  # what is left is the scene's own step
 
 
+def test_blending_demo_registration_error_ghosts_feathering_only():
+    """R12: the slider shows where multi-band beats feathering: view 2 moved 8 px, feathering loses detail."""
+    d = demos.blending_seams()
+    d.set(method="feather", gains=True, offset=0)
+    assert d.state["kept"] == 1.0
+    aligned = d.state["image"]
+    d.set(offset=8)
+    assert d.state["kept"] < 0.9 and (d.state["image"] != aligned).any()
+    d.set(method="multiband")
+    assert d.state["kept"] > 0.97
+
+
 def test_parallax_demo_residuals_grow_with_baseline():
     d = demos.parallax_ghosting()
     d.set(baseline=0.0)
@@ -270,6 +282,28 @@ def test_focal_check_names_a_sign_flip_hidden_by_abs():
     with pytest.raises(AssertionError, match="hides a sign flip") as info:
         ex.check_focal_from_rotation_homography(_abs_student("sign"))
     assert "test input 8 of 8" in str(info.value) and "NaN" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("value", "cause"),
+    [
+        (0.0, "not 0. 0 is what sqrt(f^2 + 0j).real"),
+        (float("inf"), "not inf. Infinity is no focal"),
+        (-1.0, "not -1. A negative focal"),
+        ("complex", "sqrt(f^2 + 0j).real"),
+        (None, "not None"),
+    ],
+)
+def test_focal_check_names_a_sentinel_for_the_non_rotation(value, cause):
+    """S12: 0, inf, -1, sqrt(f^2 + 0j).real or None where f^2 <= 0 is named as that, not "the same number
+    twice" or "got tuple"."""
+    from camlab.exercises.image_stitching.focal import _sentinel_student
+
+    with pytest.raises(AssertionError, match="this H is not a rotation") as info:
+        ex.check_focal_from_rotation_homography(_sentinel_student(value))
+    message = str(info.value)
+    assert "test input 8 of 8" in message and cause in message
+    assert "same number twice" not in message and "got tuple" not in message
 
 
 @pytest.mark.parametrize("formula", ["c1", "c2", "r1", "r2"])

@@ -156,6 +156,17 @@ def test_pair_blends_cover_every_setting_and_gains_hide_the_seam():
     assert b.seam_step == st.seam_step(again, seam, wi.masks[0] & wi.masks[1])
 
 
+def test_misregistered_pair_moves_view_2_only():
+    aligned, moved = pe.exposure_pair().warped, pe.misregistered_pair(4)
+    assert pe.misregistered_pair(0) is aligned
+    np.testing.assert_array_equal(moved.masks[0], aligned.masks[0])
+    np.testing.assert_array_equal(moved.masks[1], aligned.masks[1])  # the footprint stays
+    np.testing.assert_array_equal(moved.images[0], aligned.images[0])
+    assert not np.array_equal(moved.images[1], aligned.images[1])
+    with pytest.raises(CamlabInputError, match="offset: expected one of"):
+        pe.misregistered_pair(3)
+
+
 def test_parallax_grows_with_the_baseline():
     pairs = pe.parallax_pairs()
     assert tuple(pairs) == pe.BASELINES

@@ -271,9 +271,8 @@ def _no_rotation_hint(H, shape, g: float, which: str, keys) -> str:
     f2 = {k: f2[k] for k in keys}
     listed = ", ".join(f"{k} {v:.3g}" for k, v in f2.items())
     start = (
-        f"{which}: you returned {g:.6g} px for an H that is no rotation (a shift over a flat map with a little "
-        f"shear and perspective): on it every formula gives f^2 < 0 ({listed} px^2), so no focal fits and the "
-        "right answer is NaN (section 8's near-translations must not vote). "
+        f"{which}: this H is not a rotation (a shift over a flat map with a little shear and perspective): every "
+        f"formula gives f^2 <= 0 ({listed} px^2), so no focal fits: return NaN (float('nan')), not {g:.6g}. "
     )
     absolute = _focal_formulas(H, shape, absolute=True)
     if np.isfinite(g) and any(np.isclose(g, absolute[k], rtol=1e-6) for k in keys):
@@ -282,7 +281,45 @@ def _no_rotation_hint(H, shape, g: float, which: str, keys) -> str:
             "without its minus gives -f^2, and abs turns it back). Return NaN where f^2 <= 0, and check the minus "
             "in -(h0 h1 + h3 h4) / (h6 h7) and -h2 h5 / (h0 h3 + h1 h4)."
         )
-    return start + "Return NaN where the formula with the larger denominator gives f^2 <= 0."
+    sentinel = (
+        "0 is what sqrt(f^2 + 0j).real or a clamp max(f^2, 0) gives"
+        if g == 0
+        else "infinity is no focal length either"
+        if np.isinf(g)
+        else "a negative focal is what -sqrt(-f^2) gives"
+        if g < 0
+        else "that number is no focal this H implies"
+    )
+    return start + (
+        f"{sentinel[:1].upper() + sentinel[1:]}; a sentinel such as 0, inf or -1 is a number that section 8's "
+        "median of the pairs' focals would count as a vote, while NaN is the one value np.nanmedian skips."
+    )
+
+
+def _nan_expected_hint(H, shape, got, expected) -> str | None:
+    """The cause when H is no rotation (the right answer is NaN) and ``got`` is not NaN; else None.
+
+    Tested before every other cause: a sentinel returned twice must not read as "the same number twice",
+    nor (None, None) as an answer of the wrong type.
+    """
+    if not np.isnan(np.asarray(expected, float)).any():
+        return None
+    items = list(got) if isinstance(got, (tuple, list)) else [got]
+    if any(v is None for v in items):
+        return (
+            "this H is not a rotation: every formula gives f^2 <= 0, so no focal fits; return float('nan') for "
+            "each focal (a tuple (nan, nan)), not None: NaN is a float, so the answer keeps its type, and "
+            "np.nanmedian skips it where section 8 takes the median of the pairs' focals."
+        )
+    pair = _focal_pair(got)
+    if pair is None:
+        return None
+    for j, (which, keys) in enumerate(
+        ((("f_from (the rows)"), _ROWS), ("f_to (the columns)", _COLUMNS))
+    ):
+        if not _same_one(pair[j], float(expected[j])):
+            return _no_rotation_hint(H, shape, pair[j], which, keys)
+    return None
 
 
 def _focal_slip(slip: str):
@@ -530,7 +567,7 @@ def _pair_shape_hint(got, expected) -> str | None:
             "focal of the image it maps TO (f_to); return (f_from, f_to). If your formulas are right, you may have "
             "used H^-1 (it maps to -> from, so the rows and columns trade roles): use H as given."
         )
-    if np.isclose(a, b, rtol=1e-9) and f_from != f_to:
+    if np.isclose(a, b, rtol=1e-9) and np.isfinite([f_from, f_to]).all() and f_from != f_to:
         return (
             "you returned the same number twice: the photos here have different focal lengths "
             f"({f_from:.1f} and {f_to:.1f} px), so keep the rows' answer (f_from) and the columns' (f_to) apart, "
@@ -585,15 +622,13 @@ def _nan_hint(context, pair, j: int, expected, which: str) -> str | None:
 
 def _focal_diagnosis(args, got, expected) -> str:
     H, shape = args
-    shape_hint = _pair_shape_hint(got, expected)
+    shape_hint = _nan_expected_hint(H, shape, got, expected) or _pair_shape_hint(got, expected)
     if shape_hint:
         return shape_hint
     pair = _focal_pair(got)
     j = 0 if not _same_one(pair[0], float(expected[0])) else 1
     keys, which = (_ROWS, "f_from (the rows)") if j == 0 else (_COLUMNS, "f_to (the columns)")
     g, e = pair[j], float(expected[j])
-    if np.isnan(e):
-        return _no_rotation_hint(H, shape, g, which, keys)
     if np.isfinite(g) and np.isclose(g, e**2, rtol=1e-3):
         return f"{which} is f squared: the formulas give f^2; take the square root."
     h, w = shape[:2]
@@ -676,6 +711,23 @@ def _flipped(formula: str):
     return student
 
 
+def _sentinel_student(value):
+    """The prompt's rule, but ``value`` (0, inf, -1, None, or "complex": sqrt(f^2 + 0j).real) where f^2 <= 0."""
+
+    def student(H, shape):
+        f2 = _focal_formulas(H, shape, squared=True)
+        out = []
+        for keys in (_ROWS, _COLUMNS):
+            v = f2[_decides(H, shape, keys)]
+            if v > 0:
+                out.append(float(np.sqrt(v)))
+            else:
+                out.append(float(np.sqrt(v + 0j).real) if value == "complex" else value)
+        return tuple(out)
+
+    return student
+
+
 register_exercise(
     Exercise(
         name="focal_from_rotation_homography",
@@ -717,6 +769,8 @@ register_exercise(
             (_larger_denominator_student("", equal_length_only=True), "0/0"),
             (_slipped_student(""), "f^2 > 0"),  # median of both formulas of each pair
             (_abs_student(), "abs() silences the NaN"),
+            *((_sentinel_student(v), "not a rotation") for v in (0.0, np.inf, -1.0, None)),
+            (_sentinel_student("complex"), "sqrt(f^2 + 0j).real"),
             (
                 _abs_student("sign"),
                 "hides a sign flip",

@@ -11,7 +11,7 @@ from types import SimpleNamespace
 import ipywidgets as W
 import numpy as np
 from matplotlib.colors import to_rgb
-from matplotlib.patches import Patch
+from matplotlib.patches import Patch, Rectangle
 
 from ... import stitching as st
 from ...fixtures import panorama_examples as pe
@@ -248,11 +248,20 @@ def _rows_inside(
     return np.array(keep, dtype=int)
 
 
-def _blend_readout(v: dict, gains, jump: float, scene: float) -> str:
-    """The blending demo's readout: the method, the gains and the seam's own step (grey levels)."""
+def _seam_sharpness(image: np.ndarray, near: np.ndarray) -> float:
+    """The RMS luminance gradient of ``image`` on the pixels ``near`` (per pixel, 0-1 units): detail kept."""
+    gv, gu = np.gradient(image.mean(axis=2))
+    return float(np.sqrt(np.mean((gu**2 + gv**2)[near])))
+
+
+def _blend_readout(v: dict, gains, jump: float, scene: float, kept: float) -> str:
+    """The blending demo's readout: the method, the gains, the seam's own step (grey levels), the detail kept."""
     multiband = v["method"] == "multiband"
     levels = int(v["levels"])
+    offset = int(v["offset"])
     return monospace(
+        f"registration error: view 2 moved {offset} px right\n"
+        f"sharpness within 8 px of the seam: {100 * kept:.0f} % of the aligned blend's\n"
         f"blend: {v['method']}"
         + (
             f", {levels} pyramid level{'s' if levels != 1 else ''}"
@@ -273,7 +282,35 @@ def _blend_readout(v: dict, gains, jump: float, scene: float) -> str:
     )
 
 
-@register(lesson="09", sweep={"method": list(st.BLENDS), "gains": [False, True], "levels": [1, 5]})
+def _blend_zoom(wi, seam: np.ndarray) -> tuple[int, int, int]:
+    """(u0, v0, z): the blending demo's square zoom window, its top-left pixel and side.
+
+    Overwrite's seam is the border of the image painted last, the others' the middle seam: one fixed
+    window wide enough to hold both, so switching methods compares the same canvas pixels.
+    """
+    hh, ww = wi.shape
+    row, z = hh // 2, 60
+
+    def window(mask: np.ndarray) -> int:
+        """The left column of a z-wide window centred where ``mask`` switches in the middle row."""
+        cols = np.flatnonzero(np.diff(mask[row].astype(int)) != 0)
+        c0 = int(cols[0]) if len(cols) else ww // 2
+        return int(np.clip(c0 - z // 2, 0, ww - z))
+
+    u1, u2 = window(wi.masks[1]), window(seam)
+    z = int(min(ww, max(z, abs(u1 - u2) + z)))
+    return int(np.clip(min(u1, u2), 0, ww - z)), int(np.clip(row - z // 2, 0, hh - z)), z
+
+
+@register(
+    lesson="09",
+    sweep={
+        "method": list(st.BLENDS),
+        "gains": [False, True],
+        "levels": [1, 5],
+        "offset": [pe.OFFSETS[0], pe.OFFSETS[-1]],
+    },
+)
 def blending_seams() -> Demo:
     """Overwrite, feather and multi-band blending of two differently exposed views, with a zoom on the seam.
 
@@ -289,11 +326,13 @@ def blending_seams() -> Demo:
     Demo
         The demo: controls ``method`` (a blend of :data:`camlab.stitching.BLENDS`),
         ``gains`` (apply the exposure gains of gain compensation) and ``levels`` (the
-        pyramid levels, 1-6; multi-band only, disabled otherwise), the figure (the blended
+        pyramid levels, 1-6; multi-band only, disabled otherwise), ``offset`` (a registration
+        error: view 2 moved 0, 2, 4 or 8 px right, :func:`camlab.fixtures.panorama_examples.misregistered_pair`), the figure (the blended
         canvas with the zoom window outlined, and the zoom) and ``state`` (``method``,
         ``seam_jump`` the mean brightness step across the seam in grey levels 0-255,
         ``seam_own`` that step less the scene's own across the same line (one photo alone),
-        ``image`` the blended canvas, (h, w, 3) floats in [0, 1]).
+        ``image`` the blended canvas, (h, w, 3) floats in [0, 1], ``kept`` the RMS luminance gradient
+        within 8 px of the seam as a fraction of the aligned blend's).
 
     References
     ----------
@@ -307,30 +346,12 @@ def blending_seams() -> Demo:
     """
     wi, gains, seam = pe.exposure_pair()
     hh, ww = wi.shape
-    row, z = hh // 2, 60
-
-    def window(mask: np.ndarray) -> tuple[int, int]:
-        """A z x z zoom window centred where ``mask`` switches on/off in the middle row."""
-        cols = np.flatnonzero(np.diff(mask[row].astype(int)) != 0)
-        c0 = int(cols[0]) if len(cols) else ww // 2
-        return int(np.clip(c0 - z // 2, 0, ww - z)), int(np.clip(row - z // 2, 0, hh - z))
-
-    # overwrite's seam is the border of the image painted last, the others' the middle seam: one fixed window
-    # wide enough to hold both, so switching methods compares the same canvas pixels
-    (u1, _), (u2, _) = window(wi.masks[1]), window(seam)
-    z = int(min(ww, max(z, abs(u1 - u2) + z)))
-    u0 = int(np.clip(min(u1, u2), 0, ww - z))
-    v0 = int(np.clip(row - z // 2, 0, hh - z))
+    u0, v0, z = _blend_zoom(wi, seam)
     view = FigureView(figsize=(9, 3.4))
     ax, ax_z = view.fig.subplots(1, 2, width_ratios=[2.2, 1])
     im = view.animate(ax.imshow(np.zeros((hh, ww, 3), np.float32), interpolation="nearest"))
-    from matplotlib.patches import Rectangle
-
-    view.animate(
-        ax.add_patch(
-            Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color=palette.YELLOW, lw=1.5)
-        )
-    )  # over the image
+    zoom_box = Rectangle((u0 - 0.5, v0 - 0.5), z, z, fill=False, color=palette.YELLOW, lw=1.5)
+    view.animate(ax.add_patch(zoom_box))  # over the image
     ax.set_xticks([])
     ax.set_yticks([])
     title = view.animate(ax.set_title(" ", fontsize=9))
@@ -354,38 +375,50 @@ def blending_seams() -> Demo:
         xz, yz = _seam_marks(mask, both, _rows_inside(mask, both, zoom_rows, u0, z))
         seam_marks[name] = ((x, y), (xz - u0, yz - v0))
     readout = W.HTML()
-    # every setting the controls can reach, blended once (pe.pair_blends)
-    blends = pe.pair_blends()
-    cache = {key: (b.image, _rgba(b.image)) for key, b in blends.items()}
-    jumps = {key: 255 * b.seam_step for key, b in blends.items()}
-    scenes = {key: 255 * b.scene_step for key, b in blends.items()}  # one photo alone, same line
-    owns = {key: 255 * b.seam_own for key, b in blends.items()}  # the step less the scene's
+    # every setting the controls can reach, blended once per registration error (pe.pair_blends)
+    near = both & np.any([seam ^ np.roll(seam, k, axis=1) for k in range(-8, 9)], axis=0)
+    cache = {}
+
+    def blended(offset: int, key: tuple) -> tuple:
+        """(image, rgba, step, scene step, own step, sharpness kept) of one setting, made on first use."""
+        if (offset, key) not in cache:
+            b, b0 = pe.pair_blends(offset)[key], pe.pair_blends(0)[key]
+            kept = _seam_sharpness(b.image, near) / _seam_sharpness(b0.image, near)
+            steps = 255 * np.array([b.seam_step, b.scene_step, b.seam_own])
+            cache[(offset, key)] = (b.image, _rgba(b.image), *steps, kept)
+        return cache[(offset, key)]
 
     def update(v: dict, state: dict) -> None:
         multiband = v["method"] == "multiband"
         # the pyramid belongs to multi-band blending only
         controls["levels"].disabled = not multiband
         key = (v["method"], bool(v["gains"]), int(v["levels"]) if multiband else 0)
-        out, rgba = cache[key]
+        offset = int(v["offset"])
+        out, rgba, jump, scene, own, kept = blended(offset, key)
         im.set_data(rgba)
         title.set_text(
             f"{_blend_name(v['method'], int(v['levels']))}: exposures 30% apart, "
-            + (f"gains {gains[0]:.3f}, {gains[1]:.3f} applied" if v["gains"] else "before gains")
+            + (f"gains {gains[0]:.3f}, {gains[1]:.3f}" if v["gains"] else "before gains")
+            + (f"; view 2 {offset} px off" if offset else "")
         )
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
         marks = seam_marks["overwrite" if v["method"] == "overwrite" else "middle"]
         for line, xy in zip(seam_lines, marks, strict=True):
             line.set_data(*xy)
-        jump = jumps[
-            key
-        ]  # the exposure step across the seam, grey levels (overwrite: the last image's border)
-        state.update(method=v["method"], seam_jump=jump, seam_own=owns[key], image=out)
-        readout.value = _blend_readout(v, gains, jump, scenes[key])
+        # jump: the exposure step across the seam, grey levels (overwrite: the last image's border)
+        state.update(method=v["method"], seam_jump=jump, seam_own=own, image=out, kept=kept)
+        readout.value = _blend_readout(v, gains, jump, scene, kept)
 
     controls = {
         "method": W.Dropdown(options=list(st.BLENDS), value="overwrite", description="blend"),
         "gains": W.Checkbox(value=False, description="gain compensation"),
         "levels": W.IntSlider(value=5, min=1, max=6, description="pyramid levels"),
+        "offset": W.SelectionSlider(
+            options=list(pe.OFFSETS),
+            value=0,
+            description="registration error (px)",
+            style={"description_width": "initial"},
+        ),
     }
     return build_demo("blending_seams", controls, view, update, title="Blending", extra=[readout])
 
@@ -704,7 +737,8 @@ def _parallax_texts(
     )
     readout = monospace(
         f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
-        f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\ninlier RMS: {rms:.2f} px\n"
+        f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\noutliers: {n - k} (parallax shows here)\n"
+        f"inlier RMS: {rms:.2f} px\n"
         f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
         + (
             "edges of the two warped views (not of the blend):\n"

@@ -96,7 +96,7 @@ def feature_matches() -> Demo:
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
         n, nbad = len(good), int((~good).sum())
-        thinned = f"1 in {every} of each colour drawn (red dashed)"
+        thinned = f"1 line in {every} drawn per colour; wrong ones dashed"
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
             f"of the true H), {nbad} wrong (red)\n{thinned}"
@@ -212,7 +212,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="matches per bin (tallest = 1)\ngreen: inliers, red: rejected",
+        ylabel="matches per bin, scaled: tallest = 1\n(counts in the text above)\ngreen: inliers, red: rejected",
         xscale="log",
         xlim=(
             0.013,
