@@ -35,6 +35,7 @@ BROWSER_DEMOS = {
     "vanishing_points": "horizon",
     "conic_under_homography": "ellipse",
     "epipolar_lines": "epipolar",
+    "transformation_hierarchy": "similarity",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
