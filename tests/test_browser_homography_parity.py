@@ -125,8 +125,9 @@ def _image_arg(img: np.ndarray) -> dict:
     )
 
 
+@pytest.mark.parametrize("mirror", [False, True])
 @pytest.mark.parametrize("interpolation", ["bilinear", "nearest"])
-def test_the_warp_equals_warp_perspectives_numpy_path(interpolation):
+def test_the_warp_equals_warp_perspectives_numpy_path(interpolation, mirror):
     """Pixel for pixel: the JavaScript repeats numpy's float32 steps, so the bytes agree exactly."""
     rng = np.random.default_rng(73)
     pic = scenes.house_picture((40, 30))
@@ -140,16 +141,21 @@ def test_the_warp_equals_warp_perspectives_numpy_path(interpolation):
                 scale=rng.uniform(0.5, 2.5),
                 shear=rng.uniform(-1.5, 1.5),
                 aspect=rng.uniform(0.5, 2),
-                v=rng.uniform(-0.03, 0.03, 2),
+                v=rng.uniform(-0.12, 0.12, 2),
             ),
             [[1, 0, -19.5], [0, 1, -14.5], [0, 0, 1]],
         )
         for _ in range(12)
     ]
     Hs.append(-Hs[0])  # the free sign: the same picture
+    torn = sum(splits_at_infinity(H, [[0, 0], [39, 0], [39, 29], [0, 29]]) for H in Hs)
+    assert torn >= 3, f"only {torn} of the maps tear the picture (mirror draws their far halves)"
     grey = pic[..., 1]
     calls = [
-        ("warpPerspective", [_image_arg(img), H.tolist(), list(shape), interpolation, fill])
+        (
+            "warpPerspective",
+            [_image_arg(img), H.tolist(), list(shape), interpolation, fill, None, mirror],
+        )
         for H in Hs
         for img, fill in ((pic, 255), (grey, 0))
     ]
@@ -158,7 +164,9 @@ def test_the_warp_equals_warp_perspectives_numpy_path(interpolation):
     for H in Hs:
         for img, fill in ((pic, 255), (grey, 0)):
             js = np.asarray(next(out), dtype=np.uint8).reshape(*shape, 4)
-            py = warp_perspective(img, H, shape, interpolation=interpolation, fill=fill)
+            py = warp_perspective(
+                img, H, shape, interpolation=interpolation, fill=fill, mirror=mirror
+            )
             py = np.repeat(py[..., None], 3, axis=-1) if py.ndim == 2 else py
             assert (js[..., 3] == 255).all()
             differing += int(np.count_nonzero(js[..., :3] != py))
@@ -166,7 +174,7 @@ def test_the_warp_equals_warp_perspectives_numpy_path(interpolation):
                 f"warpPerspective ({interpolation}): {np.count_nonzero(js[..., :3] != py)} bytes differ, "
                 f"at most by {np.abs(js[..., :3].astype(int) - py).max()}"
             )
-    print(f"warpPerspective ({interpolation}): {differing} bytes differ")
+    print(f"warpPerspective ({interpolation}, mirror={mirror}): {differing} bytes differ")
 
 
 def test_the_shrink_to_the_shown_size_equals_opencvs_nearest_resize():

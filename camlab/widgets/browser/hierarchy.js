@@ -5,7 +5,7 @@ import { inPanel } from "./projective_plane.js";
 // camlab.widgets.homographies.geometry.transformation_hierarchy's update (the arithmetic in
 // camlab.widgets.homographies.twins.hierarchy_view, its twin hierarchyView in homography.js). The
 // picture is warped pixel by pixel (warpPerspective, the twin of camlab.warp.warp_perspective's
-// numpy path: the same bytes), shrunk to the size it is shown and drawn there, as the kernel's live
+// numpy path with mirror=True: the same bytes), shrunk to the size it is shown and drawn there, as the kernel's live
 // canvas draws imshow(interpolation="nearest"). The readout stays the kernel's.
 import { boxedText, dot, polyline, textLines } from "./drawing.js";
 
@@ -40,7 +40,8 @@ function drawWarp(ctx, scene, H) {
   const target = warpTarget(scene);
   const [h, w] = scene.canvasShape;
   const box = scene.imageBox;
-  warpPerspective(target.picture, H, scene.canvasShape, "bilinear", scene.fill, target.warped);
+  // mirrored beyond the line H sends to infinity, as the kernel's cv2 warp draws a torn picture
+  warpPerspective(target.picture, H, scene.canvasShape, "bilinear", scene.fill, target.warped, true);
   if (box.width <= w && box.height <= h) {
     nearestResize(target.warped, w, h, box.width, box.height, target.image.data);
   } else {

@@ -107,9 +107,10 @@ function rint(x) {
 // Twin: camlab.warp.warp_perspective(image, H, shape, interpolation, fill, method="numpy"): each
 // output pixel (u, v) samples the source at H^-1 (u, v, 1), bilinear or nearest, in float32 step for
 // step as numpy does it (Math.fround after each operation), source points beyond the line H sends to
-// infinity reading `fill`; rounded half to even into `out` (RGBA, 4 bytes a pixel, alpha 255).
+// infinity reading `fill` (with `mirror`, as cv2.warpPerspective, mirrored through it: only w = 0
+// reads `fill`); rounded half to even into `out` (RGBA, 4 bytes a pixel, alpha 255).
 // `image` is {data (h * w * channels bytes, rows), width, height, channels}; `shape` [height, width].
-export function warpPerspective(image, H, shape, interpolation = "bilinear", fill = 0, out = null) {
+export function warpPerspective(image, H, shape, interpolation = "bilinear", fill = 0, out = null, mirror = false) {
   const f = Math.fround;
   const { width: iw, height: ih, channels: nc, data } = image;
   const [h, w] = shape;
@@ -132,7 +133,7 @@ export function warpPerspective(image, H, shape, interpolation = "bilinear", fil
     for (let u = 0; u < w; u++) {
       let X = f(x0r + f(Hi[0][0] * u)), Y = f(y0r + f(Hi[1][0] * u));
       const Z = f(z0r + f(Hi[2][0] * u));
-      if (Z > tiny) {
+      if (mirror ? Z !== 0 : Z > tiny) {
         const iz = f(1 / Z);
         X = f(X * iz);
         Y = f(Y * iz);
