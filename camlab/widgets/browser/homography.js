@@ -98,6 +98,25 @@ export function hierarchyView(v, fixed) {
   };
 }
 
+// The output pixels (a box [u0, u1) x [v0, v1)) that can see the source: the bounding box, widened
+// by 2 px, of the image of the source's rectangle grown by one pixel (-1 to w, -1 to h: beyond it a
+// bilinear sample reads only fill); the whole output when that rectangle meets the line H sends to
+// infinity (its image is then not the quadrilateral of its corners).
+function imageBox(H, iw, ih, w, h) {
+  const corners = [[-1, -1], [iw, -1], [iw, ih], [-1, ih]];
+  const ws = corners.map(([x, y]) => H[2][0] * x + H[2][1] * y + H[2][2]);
+  if (!(ws.every((z) => z > 0) || ws.every((z) => z < 0))) return { u0: 0, u1: w, v0: 0, v1: h };
+  const m = mapPoints(H, corners);
+  const xs = m.map((p) => p[0]), ys = m.map((p) => p[1]);
+  const clamp = (x, n) => Math.min(n, Math.max(0, x));
+  return {
+    u0: clamp(Math.floor(Math.min(...xs)) - 2, w),
+    u1: clamp(Math.ceil(Math.max(...xs)) + 3, w),
+    v0: clamp(Math.floor(Math.min(...ys)) - 2, h),
+    v1: clamp(Math.ceil(Math.max(...ys)) + 3, h),
+  };
+}
+
 // Twin: numpy.rint: to the nearest integer, halves to the even one.
 function rint(x) {
   const r = Math.round(x);
@@ -128,9 +147,14 @@ export function warpPerspective(image, H, shape, interpolation = "bilinear", fil
     }
   }
   const tiny = f(1e-30), xMax = f(iw + 0.999), yMax = f(ih + 0.999);
-  for (let v = 0; v < h; v++) {
+  // Only the output pixels in the box of the source's image (one pixel more each side, where the
+  // border blends with fill) can differ from fill: the rest are set to fill at once.
+  const box = imageBox(H, iw, ih, w, h);
+  const level = Math.min(255, Math.max(0, rint(f(fill))));
+  new Uint32Array(target.buffer, target.byteOffset, h * w).fill((0xff000000 | (level << 16) | (level << 8) | level) >>> 0);
+  for (let v = box.v0; v < box.v1; v++) {
     const x0r = f(f(Hi[0][1] * v) + Hi[0][2]), y0r = f(f(Hi[1][1] * v) + Hi[1][2]), z0r = f(f(Hi[2][1] * v) + Hi[2][2]);
-    for (let u = 0; u < w; u++) {
+    for (let u = box.u0; u < box.u1; u++) {
       let X = f(x0r + f(Hi[0][0] * u)), Y = f(y0r + f(Hi[1][0] * u));
       const Z = f(z0r + f(Hi[2][0] * u));
       if (mirror ? Z !== 0 : Z > tiny) {
