@@ -136,7 +136,12 @@ _BLOCK = 16384  # output pixels per step: keeps the temporaries in the CPU cache
 
 
 def _warp_numpy(
-    img: np.ndarray, H: np.ndarray, shape: tuple[int, int], interpolation: str, fill: float
+    img: np.ndarray,
+    H: np.ndarray,
+    shape: tuple[int, int],
+    interpolation: str,
+    fill: float,
+    mirror: bool = False,
 ) -> np.ndarray:
     h, w = shape
     # Fix H's free sign so that the source origin (pixel (0, 0)) has w > 0, as with the
@@ -159,7 +164,8 @@ def _warp_numpy(
         X = np.add.outer(Hi[0, 1] * v + Hi[0, 2], Hi[0, 0] * u).ravel()
         Y = np.add.outer(Hi[1, 1] * v + Hi[1, 2], Hi[1, 0] * u).ravel()
         Z = np.add.outer(Hi[2, 1] * v + Hi[2, 2], Hi[2, 0] * u).ravel()
-        hidden = ~(Z > 1e-30)  # beyond the horizon (or NaN): not visible
+        # beyond the horizon (or NaN): not visible; mirrored, only w = 0 (or NaN) is
+        hidden = ~(Z != 0) if mirror else ~(Z > 1e-30)
         with np.errstate(divide="ignore", invalid="ignore"):
             np.divide(1.0, Z, out=Z)
             X *= Z
@@ -201,6 +207,7 @@ def warp_perspective(
     interpolation: str = "bilinear",
     fill: float = 0,
     method: str = "numpy",
+    mirror: bool = False,
 ) -> np.ndarray:
     r"""Warp an image by H (output = H applied to the image) by inverse mapping.
 
@@ -225,6 +232,10 @@ def warp_perspective(
     method : {"numpy", "cv2"}
         ``"numpy"``: the readable implementation below; ``"cv2"``: ``cv2.warpPerspective``
         with the same conventions (fast; use it in interactive demos).
+    mirror : bool
+        The numpy path only: draw source points beyond the line H sends to infinity too, mirrored
+        through it, as ``cv2.warpPerspective`` does (a picture torn by H then shows both halves,
+        one leaving through infinity and coming back on the other side). Default False: ``fill``.
 
     Returns
     -------
@@ -252,7 +263,7 @@ def warp_perspective(
         raise CamlabInputError(f"fill: expected a finite number, got {fill!r}")
     if method == "cv2":
         return _warp_cv2(img, Hm, shape, interpolation, fill)
-    return _to_dtype(_warp_numpy(img, Hm, shape, interpolation, fill), img.dtype)
+    return _to_dtype(_warp_numpy(img, Hm, shape, interpolation, fill, mirror), img.dtype)
 
 
 def forward_warp(

@@ -35,6 +35,7 @@ BROWSER_DEMOS = {
     "vanishing_points": "horizon",
     "conic_under_homography": "ellipse",
     "epipolar_lines": "epipolar",
+    "transformation_hierarchy": "similarity",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
@@ -287,6 +288,31 @@ def test_a_drag_in_the_left_image_moves_the_epipolar_point(lab_page):
     snapshot(name + "_forward", live)
     share = drawn_as_matplotlib_draws_it(name, live, dict(values, motion="forward (driving)"))
     assert share >= 0.95, f"in forward motion the canvas matches matplotlib's on {share:.0%}"
+
+
+def test_the_transformation_hierarchy_canvas_follows_the_group_and_its_tear(lab_page):
+    """transformation_hierarchy's group (a dropdown: its index is linked) redraws the canvas; at v1's end
+    the picture is torn: the vanishing line, the note and the projective facts, as matplotlib draws them."""
+    page = lab_page
+    name = "transformation_hierarchy"
+    _shown(page, name)
+    page.locator(f".{css(name)} select").select_option("projective")
+    handles = page.locator(f".{css(name)} .widget-slider .noUi-handle")
+    handles.nth(6).focus()  # v1, enabled now
+    page.keyboard.press("End")
+    page.wait_for_function(  # the slider's readout, at its end
+        "(s) => { const r = document.querySelectorAll(s); return r.length > 6"
+        " && parseFloat(r[6].textContent) === 15; }",
+        arg=f".{css(name)} .widget-readout",
+        polling=100,
+    )
+    page.wait_for_timeout(300)
+    values = slider_values(page, name)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_torn", live)
+    share = drawn_as_matplotlib_draws_it(name, live, dict(values, group="projective"))
+    assert share >= 0.95, f"torn, the canvas matches matplotlib's on {share:.0%}"
 
 
 def test_stack_check_is_drawn_in_the_browser_in_the_lecture_mode(playwright, tmp_path):

@@ -43,14 +43,14 @@ process.stdin.on("data", (d) => (input += d));
 process.stdin.on("end", () => {
   const calls = JSON.parse(input);
   const out = calls.map(([name, args]) => G[name](...args));
-  process.stdout.write(JSON.stringify(out, (k, v) => (typeof v === "number" && !Number.isFinite(v) ? String(v) : v)));
+  process.stdout.write(JSON.stringify(out, (k, v) => (ArrayBuffer.isView(v) ? Array.from(v) : typeof v === "number" && !Number.isFinite(v) ? String(v) : v)));
 });
 """
 
 
-def run_js(calls: list[tuple[str, list]]) -> list:
-    """Call geometry.js's functions under node: ``[(name, args), ...]`` -> their results (NaN kept)."""
-    script = RUNNER % json.dumps(GEOMETRY.as_uri())
+def run_js(calls: list[tuple[str, list]], module: Path = GEOMETRY) -> list:
+    """Call a module's functions under node (geometry.js by default): ``[(name, args), ...]`` -> their results (NaN kept)."""
+    script = RUNNER % json.dumps(module.as_uri())
     done = subprocess.run(
         [NODE, "--input-type=module", "-e", script],
         input=json.dumps(calls),

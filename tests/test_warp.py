@@ -106,6 +106,19 @@ def test_fill_and_points_behind_horizon():
     assert np.array_equal(a, b)
 
 
+def test_mirror_draws_the_far_side_of_the_horizon_as_cv2_does():
+    """mirror=True: the points beyond the line H sends to infinity show mirrored, as OpenCV draws them."""
+    Hh = np.array([[1.0, 0, 0], [0, 1, 30], [0, 0, 1]]) @ np.array(
+        [[1.0, 0, 0], [0, 1, 0], [0, -0.1, 1]]
+    )
+    src = _image((40, 40))
+    out = warp.warp_perspective(src, Hh, (60, 40), fill=0, mirror=True)
+    ref = cv2.warpPerspective(src, Hh, (40, 60))
+    assert out[:18].max() > 0  # the mirrored part, which mirror=False leaves at fill
+    assert np.abs(out.astype(int) - ref).max() <= 1
+    assert not warp.warp_perspective(src, Hh, (60, 40), fill=0)[:18].any()
+
+
 def test_forward_warp_has_holes_inverse_does_not():
     img = np.full((50, 50), 255, np.uint8)
     Hs = similarity_homography(2.5, 0.2, 10, 10)

@@ -58,6 +58,8 @@ MODULES = (
     "dolly_zoom.js",
     "projective_plane.js",
     "epipolar.js",
+    "homography.js",
+    "hierarchy.js",
     "widget.js",
 )
 """The ES modules, in dependency order, joined into the one module anywidget loads."""

@@ -29,6 +29,7 @@ __all__ = [
     "path_marker_style",
     "plane_panel",
     "similar_triangles_scene",
+    "spine_lines",
     "three_cameras_scene",
 ]
 
@@ -434,3 +435,44 @@ def arrow_pointing_right(path: Any) -> list[list[float]]:
     """
     verts = np.asarray(path, dtype=float)[:-1]
     return np.column_stack([verts[:, 1], -verts[:, 0]]).tolist()
+
+
+def spine_lines(ax: Any) -> list[dict]:
+    """An axes' visible spines as canvas polylines with their look (``drawing.js``'s ``polyline``).
+
+    A demo whose image is animated has its spines animated too (a full draw paints them over the
+    image), so they are not in the static background: the browser draws them after the image.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes, after the figure's layout is fixed.
+
+    Returns
+    -------
+    list of dict
+        Per visible spine ``points`` (its path, canvas px) and ``style`` (colour, width, caps,
+        joins; snapped as matplotlib snaps it).
+    """
+    pt = ax.figure.dpi / 72.0
+    height = canvas_height(ax.figure)
+    caps = {"butt": "butt", "round": "round", "projecting": "square"}
+    out = []
+    for spine in ax.spines.values():
+        if not spine.get_visible():
+            continue
+        xy = spine.get_transform().transform_path(spine.get_path()).vertices
+        out.append(
+            dict(
+                points=np.column_stack([xy[:, 0], height - xy[:, 1]]).tolist(),
+                style=dict(
+                    color=to_hex(spine.get_edgecolor()),
+                    width=spine.get_linewidth() * pt,
+                    dash=[],
+                    join=spine.get_joinstyle(),
+                    cap=caps[spine.get_capstyle()],
+                    snap=spine.get_snap() is not False,
+                ),
+            )
+        )
+    return out

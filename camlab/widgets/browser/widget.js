@@ -5,6 +5,7 @@ import { drawSimilarTriangles, dragSimilarTriangles } from "./similar_triangles.
 import { drawThreeCameras } from "./three_cameras.js";
 import { drawDollyZoom } from "./dolly_zoom.js";
 import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
+import { drawHierarchy } from "./hierarchy.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
@@ -21,6 +22,7 @@ const SCENES = {
   vanishing_points: { draw: drawVanishingPoints },
   conic_under_homography: { draw: drawConic },
   epipolar_lines: { draw: drawEpipolarLines, drag: dragEpipolarLines },
+  transformation_hierarchy: { draw: drawHierarchy },
 };
 
 // A press, and a move with the button held, on the canvas set the parameters the demo's drag names.

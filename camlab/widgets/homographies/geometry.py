@@ -13,16 +13,16 @@ from ... import scenes
 from ..._validate import DegenerateError
 from ...plotting import palette
 from ...projective import (
-    LINE_AT_INFINITY,
     clip_line,
     cross_ratio,
-    map_lines,
     map_points,
     map_polyline,
     splits_at_infinity,
 )
 from ...warp import warp_perspective
 from .._base import Demo, FigureView, build_demo, register, slider
+from ..browser import BrowserView
+from ..browser.homography_scenes import hierarchy_scene
 from ..controls import (
     connect_corner_drag,
     convex_clamp,
@@ -33,6 +33,8 @@ from ..controls import (
     parse_corners,
 )
 from .notes import TORN_DRAG, TORN_SHORT, warning_note
+from .twins import diagonal_points as _diagonal_points
+from .twins import hierarchy_fixed, hierarchy_view
 
 # ----------------------------------------------------------------------------- hierarchy
 
@@ -43,6 +45,8 @@ _SLIDERS_USED = {  # the sliders each group's matrix reads; the others are greye
     "affine": {"theta", "tx", "ty", "scale", "phi", "aspect"},
     "projective": {"theta", "tx", "ty", "scale", "phi", "aspect", "v1", "v2"},
 }
+HIERARCHY_PARAMS = ("group", "theta", "scale", "phi", "aspect", "tx", "ty", "v1", "v2")
+"""The hierarchy demo's controls, which the browser redraws on."""
 _GROUP_NAMES = {
     "euclidean": "Euclidean",
     "similarity": "similarity",
@@ -98,17 +102,6 @@ def _hierarchy_texts(group, kind, Hg, H, picture_shape, canvas_hw):
         + ", ".join(info["invariants"])
     )
     return facts, readout
-
-
-def _diagonal_points(picture_shape) -> np.ndarray:
-    """The four points whose cross-ratio the hierarchy demo measures (on the picture's diagonal).
-
-    They lie 0, 1/3, 2/3 and 1 of the way from its top-left pixel centre to its bottom-right one:
-    none at the middle, which H (acting about the picture's centre) never moves, so each point's
-    open "before" ring shows beside or around its filled "after" dot.
-    """
-    ph, pw = picture_shape[:2]
-    return np.array([[0.0], [1 / 3], [2 / 3], [1.0]]) * [pw - 1.0, ph - 1.0]
 
 
 def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
@@ -200,9 +193,9 @@ def _diagonal_artists(view, ax, before):
     """The four diagonal points of the cross-ratio: before H (open) and mapped (filled).
 
     Both are animated: the warped picture is an animated image, and a static marker would sit in
-    the cached background under it, lost in every live frame.
+    the cached background under it, lost in every live frame. Returns the two lines, before first.
     """
-    view.animate(
+    before_art = view.animate(
         ax.plot(
             *before.T,
             "o",
@@ -214,7 +207,7 @@ def _diagonal_artists(view, ax, before):
             label="cross-ratio points, before H",
         )[0]
     )
-    return view.animate(
+    after_art = view.animate(
         ax.plot(
             [],
             [],
@@ -227,6 +220,7 @@ def _diagonal_artists(view, ax, before):
             label="cross-ratio points, after H",
         )[0]
     )
+    return before_art, after_art
 
 
 def _hierarchy_figure(pic, C, P, canvas_hw):
@@ -244,12 +238,14 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
     Returns
     -------
     SimpleNamespace
-        ``view``, ``ax``, ``im``, ``grid_art``, ``horizon_art``, ``diagonal_art``, ``facts``, ``warning``,
-        ``grid_lines``, ``xlim``, ``ylim``.
+        ``view``, ``ax``, ``im``, ``grid_art``, ``horizon_art``, ``diagonal_art`` (and
+        ``diagonal_before``, ``outline_art``: animated, never moved), ``facts``, ``warning``,
+        ``xlim``, ``ylim``.
     """
     ph, pw = pic.shape[:2]
     xlim, ylim = (-0.5, canvas_hw[1] - 0.5), (-0.5, canvas_hw[0] - 0.5)
-    view = FigureView(figsize=(8.5, 4.2))
+    # drawn in the browser when a kernel shows it (browser/hierarchy.js), the group a choice
+    view = BrowserView(HIERARCHY_PARAMS, figsize=(8.5, 4.2), choices=("group",))
     ax = view.fig.subplots()
     ax.set(xlim=xlim, ylim=ylim[::-1], aspect="equal", xlabel="u (pixels)", ylabel="v (pixels)")
     im = view.animate(
@@ -263,7 +259,7 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
     box0 = map_points(
         outline0, np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1], [0, 0]], float)
     )
-    view.animate(
+    outline_art = view.animate(
         ax.plot(
             box0[:, 0],
             box0[:, 1],
@@ -274,11 +270,6 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
             path_effects=palette.halo(1.5),  # over the dark mapped picture too
         )[0]
     )
-    samples = np.linspace(0, 1, 60)  # dense, so the polylines follow the picture up to its tear
-    # on the picture's 40-pixel tile edges (pixel centres at integers: edges at -0.5 + 40 k)
-    xs_edge, ys_edge = np.linspace(-0.5, pw - 0.5, 5), np.linspace(-0.5, ph - 0.5, 4)
-    grid_lines = [np.column_stack([np.full(60, x), -0.5 + samples * ph]) for x in xs_edge]
-    grid_lines += [np.column_stack([-0.5 + samples * pw, np.full(60, y)]) for y in ys_edge]
     grid_art = view.animate(
         ax.plot(
             [],
@@ -299,7 +290,9 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
             label="vanishing line (image\nof l∞), when in view",
         )[0]
     )
-    diagonal_art = _diagonal_artists(view, ax, map_points(outline0, _diagonal_points(pic.shape)))
+    diagonal_before, diagonal_art = _diagonal_artists(
+        view, ax, map_points(outline0, _diagonal_points(pic.shape))
+    )
     ax.set_title(
         "the picture mapped by H about its centre (group, dof, invariants at the right)",
         fontsize=10,
@@ -323,9 +316,10 @@ def _hierarchy_figure(pic, C, P, canvas_hw):
         grid_art=grid_art,
         horizon_art=horizon_art,
         diagonal_art=diagonal_art,
+        diagonal_before=diagonal_before,
+        outline_art=outline_art,
         facts=facts,
         warning=warning,
-        grid_lines=grid_lines,
         xlim=xlim,
         ylim=ylim,
     )
@@ -370,44 +364,30 @@ def transformation_hierarchy() -> Demo:
        hierarchy of transformations), table 2.1.
     """
     pic = scenes.house_picture()
-    ph, pw = pic.shape[:2]
     canvas_hw = (360, 480)
     # Picture coordinates centred on the origin; C places the origin at the canvas centre.
     # Pixel centres at integers: the centre of a W-pixel axis is (W - 1) / 2, so (239.5, 179.5).
-    C = np.array([[1.0, 0, (canvas_hw[1] - 1) / 2], [0, 1, (canvas_hw[0] - 1) / 2], [0, 0, 1]])
-    P = np.array([[1.0, 0, -(pw - 1) / 2], [0, 1, -(ph - 1) / 2], [0, 0, 1]])
-    fig = _hierarchy_figure(pic, C, P, canvas_hw)
+    fixed = hierarchy_fixed(pic.shape, canvas_hw)
+    fig = _hierarchy_figure(pic, fixed["C"], fixed["P"], canvas_hw)
     view, im, grid_art, horizon_art = fig.view, fig.im, fig.grid_art, fig.horizon_art
-    facts, warning, grid_lines = fig.facts, fig.warning, fig.grid_lines
-    picture_corners = np.array([[0, 0], [pw - 1, 0], [pw - 1, ph - 1], [0, ph - 1]], float)
+    facts, warning = fig.facts, fig.warning
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
-        Hg = hg.hierarchy_matrix(
-            v["group"],
-            theta=np.radians(v["theta"]),
-            scale=v["scale"],
-            shear=np.radians(v["phi"]),
-            aspect=v["aspect"],
-            tx=v["tx"],
-            ty=v["ty"],
-            v=(v["v1"] * 1e-3, v["v2"] * 1e-3),
-        )
-        H = hg.compose(C, Hg, P)
+        # the per-move geometry (its twin hierarchyView in the browser's homography.js)
+        g = hierarchy_view(v, fixed)
+        Hg, H, kind, torn = g.Hg, g.H, g.kind, g.torn
         for name, control in controls.items():  # grey out what the group ignores
             control.disabled = name != "group" and name not in _SLIDERS_USED[v["group"]]
+        # cv2's warp, fast; the browser warps with the twin of warp_perspective's numpy path
         im.set_data(warp_perspective(pic, H, canvas_hw, method="cv2", fill=255))
-        pieces = [np.vstack([map_polyline(H, line), [[np.nan, np.nan]]]) for line in grid_lines]
-        m = np.vstack(pieces)
-        grid_art.set_data(m[:, 0], m[:, 1])
+        grid_art.set_data(g.grid[:, 0], g.grid[:, 1])
         # the four points of the cross-ratio, mapped
-        fig.diagonal_art.set_data(*map_points(H, _diagonal_points(pic.shape)).T)
+        fig.diagonal_art.set_data(*g.diagonal.T)
         # l' = H^-T l_inf: where parallel lines of the picture meet (outside the view for affine H)
-        vanishing = clip_line(map_lines(H, LINE_AT_INFINITY), fig.xlim, fig.ylim)
+        vanishing = g.vanishing
         horizon_art.set_data(vanishing[:, 0], vanishing[:, 1])
         info = hg.HIERARCHY[v["group"]]
-        kind = hg.classify(Hg)
-        torn = splits_at_infinity(H, picture_corners)
         warning(TORN_SHORT if torn else "")
         state.update(
             H=Hg,
@@ -434,7 +414,7 @@ def transformation_hierarchy() -> Demo:
         "v1": slider(1.5, -15.0, 15.0, 0.1, "projective: v1 (×1e-3 /px)"),
         "v2": slider(0.0, -15.0, 15.0, 0.1, "projective: v2 (×1e-3 /px)"),
     }
-    return build_demo(
+    demo = build_demo(
         "transformation_hierarchy",
         controls,
         view,
@@ -442,6 +422,18 @@ def transformation_hierarchy() -> Demo:
         title="The transformation hierarchy",
         extra=[readout],
     )
+    # the texts beside the canvas for each group and the smallest group holding its matrix
+    texts = {
+        g: {
+            k: _hierarchy_texts(g, k, np.eye(3), np.eye(3), pic.shape, canvas_hw)[0]
+            for k in _GROUPS
+        }
+        for g in _GROUPS
+    }
+    view.publish(
+        demo, hierarchy_scene(fig, pic, fixed, texts, TORN_SHORT)
+    )  # the browser draws the moves
+    return demo
 
 
 # ----------------------------------------------------------------------------- drag corners

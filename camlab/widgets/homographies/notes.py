@@ -33,7 +33,7 @@ def warning_note(
     -------
     callable
         ``say(text)``: show ``text`` in the note, or hide it for ``""`` (a hidden text
-        costs nothing to draw, an empty one with a box does).
+        costs nothing to draw, an empty one with a box does); ``say.artist`` is the text.
     """
     note = view.animate(
         ax.text(
@@ -54,6 +54,7 @@ def warning_note(
         note.set_text(text)
         note.set_visible(bool(text))
 
+    say.artist = note  # the text itself, for a browser-drawn demo's scene
     return say
 
 

@@ -1,0 +1,197 @@
+"""Lesson 07's browser arithmetic (camlab/widgets/browser/homography.js) equals its numpy twins.
+
+``transformation_hierarchy`` drawn in the browser: the group's matrix, the map drawn, the smallest
+group, the mapped grid, diagonal and vanishing line and the tear, on random control values of every
+group and at the settings the demo reaches at its edges (v = 0: an affine "projective" map; a tear);
+and the picture warped pixel by pixel, compared with camlab.warp.warp_perspective's numpy path.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from test_browser_geometry_parity import CASES, NODE, assert_twins, run_js
+
+from camlab import homography as hg
+from camlab import scenes
+from camlab.projective import map_polyline, splits_at_infinity
+from camlab.warp import warp_perspective
+from camlab.widgets.homographies.twins import hierarchy_fixed, hierarchy_view
+
+HOMOGRAPHY = (
+    Path(__file__).resolve().parent.parent / "camlab" / "widgets" / "browser" / "homography.js"
+)
+
+pytestmark = pytest.mark.skipif(
+    NODE is None, reason="node is not installed: the JavaScript twins cannot be run"
+)
+
+
+def _fixed_by_hand() -> dict:
+    return hierarchy_fixed((120, 160, 3), (360, 480))
+
+
+def _settings(rng: np.random.Generator) -> list[dict]:
+    """Control values on the sliders' steps, every group, and the edges the demo reaches."""
+    out = []
+    for k in range(CASES):
+        out.append(
+            dict(
+                group=list(hg.HIERARCHY)[k % 4],
+                theta=float(np.round(rng.uniform(-180, 180))),
+                scale=float(np.round(rng.uniform(0.3, 2.5) * 20) / 20),
+                phi=float(np.round(rng.uniform(-90, 90))),
+                aspect=float(np.round(rng.uniform(0.4, 2.5) * 20) / 20),
+                tx=float(np.round(rng.uniform(-100, 100))),
+                ty=float(np.round(rng.uniform(-80, 80))),
+                v1=float(np.round(rng.uniform(-15, 15) * 10) / 10),
+                v2=float(np.round(rng.uniform(-15, 15) * 10) / 10),
+            )
+        )
+    base = dict(theta=15.0, scale=1.2, phi=60.0, aspect=1.4, tx=0.0, ty=0.0, v1=1.5, v2=0.0)
+    out += [dict(base, group="projective", v1=0.0), dict(base, group="affine", aspect=1.0)]
+    out += [dict(base, group="projective", v1=14.0), dict(base, group="similarity", scale=1.0)]
+    return out
+
+
+def _jsonable(fixed: dict) -> dict:
+    return {
+        k: (
+            [np.asarray(x).tolist() for x in v]
+            if k == "grid_lines"
+            else np.asarray(v, dtype=float).tolist()
+        )
+        for k, v in fixed.items()
+    }
+
+
+def test_the_hierarchy_view_equals_the_demo():
+    rng = np.random.default_rng(71)
+    fixed = _fixed_by_hand()
+    settings = _settings(rng)
+    views = [hierarchy_view(v, fixed) for v in settings]
+    out = run_js([("hierarchyView", [v, _jsonable(fixed)]) for v in settings], HOMOGRAPHY)
+    worst, kinds, torn = 0.0, set(), 0
+    for js, py in zip(out, views, strict=True):
+        for key in ("Hg", "H", "grid", "diagonal", "vanishing"):
+            worst = max(worst, assert_twins(js[key], getattr(py, key), f"hierarchyView {key}"))
+        assert js["kind"] == py.kind, f"classify: JS {js['kind']}, numpy {py.kind}"
+        assert js["torn"] == py.torn, "splitsAtInfinity disagrees"
+        kinds.add(py.kind)
+        torn += py.torn
+    assert kinds == set(hg.HIERARCHY), f"not every group was classified: {kinds}"
+    assert 0 < torn < len(settings), "no torn picture (or only torn ones) was tried"
+    print(f"transformation_hierarchy: worst relative error {worst:.2e}")
+
+
+def test_classify_map_polyline_and_the_tear_equal_camlab():
+    rng = np.random.default_rng(72)
+    Hs = [
+        np.eye(3) + rng.normal(scale=0.3, size=(3, 3)) * [[1, 1, 50], [1, 1, 50], [2e-2, 2e-2, 0]]
+        for _ in range(CASES)
+    ]
+    Hs += [
+        hg.similarity_homography(2.0, 0.3, 5, 1),
+        hg.euclidean_homography(0.7, 3, 4),
+        np.diag([1.0, -1.0, 1.0]),
+    ]
+    polyline = np.column_stack([np.linspace(-50, 250, 97), np.linspace(30, -40, 97)])
+    square = np.array([[0.0, 0.0], [159.0, 0.0], [159.0, 119.0], [0.0, 119.0]])
+    calls = [("classifyHomography", [H.tolist()]) for H in Hs]
+    calls += [("mapPolyline", [H.tolist(), polyline.tolist()]) for H in Hs]
+    calls += [("splitsAtInfinity", [H.tolist(), square.tolist()]) for H in Hs]
+    out = run_js(calls, HOMOGRAPHY)
+    n = len(Hs)
+    assert out[:n] == [hg.classify(H) for H in Hs]
+    worst = max(
+        assert_twins(js, map_polyline(H, polyline), "mapPolyline")
+        for js, H in zip(out[n : 2 * n], Hs, strict=True)
+    )
+    assert out[2 * n :] == [splits_at_infinity(H, square) for H in Hs]
+    breaks = sum(int(np.isnan(map_polyline(H, polyline)).any()) for H in Hs)
+    assert breaks >= 10, f"only {breaks} polylines passed through infinity"
+    print(f"mapPolyline: worst relative error {worst:.2e}")
+
+
+def _image_arg(img: np.ndarray) -> dict:
+    h, w = img.shape[:2]
+    return dict(
+        data=img.reshape(-1).tolist(),
+        width=w,
+        height=h,
+        channels=1 if img.ndim == 2 else img.shape[2],
+    )
+
+
+@pytest.mark.parametrize("mirror", [False, True])
+@pytest.mark.parametrize("interpolation", ["bilinear", "nearest"])
+def test_the_warp_equals_warp_perspectives_numpy_path(interpolation, mirror):
+    """Pixel for pixel: the JavaScript repeats numpy's float32 steps, so the bytes agree exactly."""
+    rng = np.random.default_rng(73)
+    pic = scenes.house_picture((40, 30))
+    shape = (50, 70)
+    Hs = [
+        hg.compose(
+            [[1, 0, 35], [0, 1, 25], [0, 0, 1]],
+            hg.hierarchy_matrix(
+                "projective",
+                theta=rng.uniform(-3, 3),
+                scale=rng.uniform(0.5, 2.5),
+                shear=rng.uniform(-1.5, 1.5),
+                aspect=rng.uniform(0.5, 2),
+                v=rng.uniform(-0.12, 0.12, 2),
+            ),
+            [[1, 0, -19.5], [0, 1, -14.5], [0, 0, 1]],
+        )
+        for _ in range(12)
+    ]
+    Hs.append(-Hs[0])  # the free sign: the same picture
+    torn = sum(splits_at_infinity(H, [[0, 0], [39, 0], [39, 29], [0, 29]]) for H in Hs)
+    assert torn >= 3, f"only {torn} of the maps tear the picture (mirror draws their far halves)"
+    grey = pic[..., 1]
+    calls = [
+        (
+            "warpPerspective",
+            [_image_arg(img), H.tolist(), list(shape), interpolation, fill, None, mirror],
+        )
+        for H in Hs
+        for img, fill in ((pic, 255), (grey, 0))
+    ]
+    out = iter(run_js(calls, HOMOGRAPHY))
+    differing = 0
+    for H in Hs:
+        for img, fill in ((pic, 255), (grey, 0)):
+            js = np.asarray(next(out), dtype=np.uint8).reshape(*shape, 4)
+            py = warp_perspective(
+                img, H, shape, interpolation=interpolation, fill=fill, mirror=mirror
+            )
+            py = np.repeat(py[..., None], 3, axis=-1) if py.ndim == 2 else py
+            assert (js[..., 3] == 255).all()
+            differing += int(np.count_nonzero(js[..., :3] != py))
+            assert np.array_equal(js[..., :3], py), (
+                f"warpPerspective ({interpolation}): {np.count_nonzero(js[..., :3] != py)} bytes differ, "
+                f"at most by {np.abs(js[..., :3].astype(int) - py).max()}"
+            )
+    print(f"warpPerspective ({interpolation}, mirror={mirror}): {differing} bytes differ")
+
+
+def test_the_shrink_to_the_shown_size_equals_opencvs_nearest_resize():
+    """nearestResize: the live canvas keeps an animated image at its shown size with cv2's INTER_NEAREST."""
+    import cv2
+
+    rng = np.random.default_rng(74)
+    sizes = [(480, 360, 409, 307), (300, 260, 257, 223), (70, 50, 69, 31), (240, 180, 97, 73)]
+    sizes += [
+        tuple(int(c) for c in (w, h, rng.integers(2, w), rng.integers(2, h)))
+        for w, h in rng.integers(20, 200, (8, 2))
+    ]
+    images = [rng.integers(0, 256, (sh, sw, 4), dtype=np.uint8) for sw, sh, _, _ in sizes]
+    calls = [
+        ("nearestResize", [img.reshape(-1).tolist(), sw, sh, dw, dh])
+        for img, (sw, sh, dw, dh) in zip(images, sizes, strict=True)
+    ]
+    for js, img, (_sw, _sh, dw, dh) in zip(run_js(calls, HOMOGRAPHY), images, sizes, strict=True):
+        py = cv2.resize(img, (dw, dh), interpolation=cv2.INTER_NEAREST)
+        assert np.array_equal(np.asarray(js, dtype=np.uint8).reshape(dh, dw, 4), py), (dw, dh)
