@@ -199,8 +199,10 @@ def _diagonal_artists(view, ax, before):
         ax.plot(
             *before.T,
             "o",
+            color=palette.BROWN,
             mfc="none",
             mec=palette.BROWN,
+            path_effects=palette.halo(1),  # readable over the dark picture too
             mew=1.5,
             ms=10,
             zorder=4,
