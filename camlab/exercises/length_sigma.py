@@ -364,6 +364,13 @@ def _diagnosis(args, got, expected) -> str:
     hint = first_mistake(
         _MISTAKES, _context(*args), float(got), lambda a, b: np.isclose(a, b, rtol=1e-4, atol=0)
     )
+    if not hint and abs(float(got) / expected - 1) < 2e-3:
+        return (
+            f"nearly right: sigma_L = {1000 * float(got):.4f} mm, expected {1000 * expected:.4f} mm. A difference "
+            "this small is the error of the gradients' steps: a step far too large (0.1 rad or m, 1 px) "
+            "bends each difference with the curvature of the length. Use central differences with "
+            "h about 1e-6 (radians, metres) for g_p and 1e-4 px for g_u."
+        )
     return hint or (
         f"expected sigma_L = {1000 * expected:.4f} mm, got {1000 * float(got):.4f} mm: take g_p (6) and "
         "g_u (4) by central differences of the length, then sqrt(g_p @ Sigma_p @ g_p + sigma_u**2 * g_u @ g_u)."

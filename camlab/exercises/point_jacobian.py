@@ -119,6 +119,7 @@ def _context(K, R, t, X):
         Xc=Xc,
         R=R,
         no_cross=np.array([[fx / z, 0.0, 0.0], [0.0, fy / z, 0.0]]),
+        at_RX=_dpix(K, R @ X),  # d(u, v)/d X_c taken at R X: t left out of X_c
         z_once=np.array([[fx / z, 0.0, -fx * x / z], [0.0, fy / z, -fy * y / z]]),
         pixel_over_z=np.array(
             [[fx / z, 0.0, -(fx * x / z + K[0, 2]) / z], [0.0, fy / z, -(fy * y / z + K[1, 2]) / z]]
@@ -132,6 +133,14 @@ def _context(K, R, t, X):
         K_rows_over_z=K[:2] / z,
         transposed=_reference(K, R.T, t, X),  # the right formula, R.T used for R throughout
         inverted=_inverted(K, R, t, X),
+    )
+
+
+def _dpix(K, Xc):
+    """d(u, v)/d X_c at the camera-frame point ``Xc``."""
+    x, y, z = Xc
+    return np.array(
+        [[K[0, 0] / z, 0.0, -K[0, 0] * x / z**2], [0.0, K[1, 1] / z, -K[1, 1] * y / z**2]]
     )
 
 
@@ -185,6 +194,13 @@ _MISTAKES = (
         lambda c: c.with_(-c.R @ _skew(c.X)),
         "you perturbed on the right, R <- R exp([dw]x) (dw in the world's axes): section 1 applies the "
         "small rotation on the LEFT, R <- exp([dw]x) R, so d X_c / d dw = -[R X]x.",
+    ),
+    Mistake(
+        "t forgotten in X_c",
+        lambda c: c.with_(-_skew(c.RX), c.at_RX),
+        "you took d(u, v)/d X_c at R X, leaving t out of the camera-frame point: the pixel is the "
+        "projection of X_c = R X + t, so x, y and z in [[fx/z, 0, -fx x/z^2], [0, fy/z, -fy y/z^2]] are "
+        "the entries of R @ X + t (only the skew matrix uses R X = X_c - t).",
     ),
     Mistake(
         "no -x/z^2 term",
@@ -411,6 +427,7 @@ register_exercise(
             (_variant("right perturbation"), "on the right"),
             (_variant("+[X_c]x"), "the sign and the vector"),
             (_variant("+[X]x"), "not the world point X"),
+            (_variant("t forgotten in X_c"), "leaving t out"),
             (_variant("no -x/z^2 term"), "third column"),
             (_variant("z not squared"), "divides by z once"),
             (_variant("u for u - cx"), "includes cx"),

@@ -328,7 +328,8 @@ def plane_error() -> Demo:
             across_mm=1000 * now_x.sigma,
         )
         readout.value = monospace(
-            f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board's first row spans {now.board_px:.0f} px"
+            f"tilt {v['tilt']:.0f} deg, {v['distance']:.2f} m: the board's first row spans {now.board_px:.0f} px, "
+            f"the board is {np.ptp(now.corners[:, 1]):.0f} px tall"
             + ("" if now.in_frame and now_x.in_frame else " (part of it is outside the photo!)")
             + "\n"
             f"σ of the 0.2 m edge along the slope (purple):  {1000 * now.sigma:5.2f} mm\n"
@@ -421,15 +422,18 @@ RAY_MM_PER_PX = 0.332
 
 
 ALPHAS = np.linspace(3.0, 120.0, 118)
+RAY_HALF = (18.0, 30.0)
+"""The ray panel's half-width and half-height, in units of e (one ray's sideways sigma)."""
 
 
 def _ray_figure() -> SimpleNamespace:
     """The two rays and their ellipse (left), and the two laws against the angle (right)."""
     view = FigureView(figsize=(9.0, 5.0))
     ax, ax_law = view.fig.subplots(1, 2, width_ratios=[1, 1.15])
-    ax.set(xlim=(-6, 6), ylim=(-10, 10), aspect="equal")
-    ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
-    ax.set_ylabel("depth, along the bisector (mm)", fontsize=8)
+    # in units of e, one ray's sideways sigma: the picking slider changes only the mm scale bar
+    ax.set(xlim=(-RAY_HALF[0], RAY_HALF[0]), ylim=(-RAY_HALF[1], RAY_HALF[1]), aspect="equal")
+    ax.set_xlabel("across, in the rays' plane (units of e)", fontsize=8)
+    ax.set_ylabel("depth, along the bisector (units of e)", fontsize=8)
     ax_law.set(xlim=(0, 124), ylim=(0.02, 20), yscale="log")  # room for the ring at 120 deg
     ax_law.set_xlabel("angle α between the rays (deg)", fontsize=8)
     ax_law.set_ylabel("one σ of the point (mm, log scale)", fontsize=8)
@@ -443,6 +447,10 @@ def _ray_figure() -> SimpleNamespace:
     f.bands = [ax.plot([], [], ":", color=palette.ORANGE, lw=1)[0] for _ in range(4)]
     (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
     (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
+    (f.bar,) = ax.plot([], [], "-", color="0.1", lw=3, solid_capstyle="butt")  # 1 mm in units of e
+    f.bar_text = ax.text(
+        0, 0, "1 mm", fontsize=8, ha="left", va="bottom", color="0.1", path_effects=palette.halo(2)
+    )
     ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
     ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
     ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
@@ -454,7 +462,18 @@ def _ray_figure() -> SimpleNamespace:
     handles = ax.get_legend_handles_labels()[0] + ax_law.get_legend_handles_labels()[0]
     view.fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=7)
     ax.set_title(" ", fontsize=9)
-    view.animate(*f.rays, *f.bands, f.ellipse, f.axes_, ax.title, f.law_depth, f.law_across, f.here)
+    view.animate(
+        *f.rays,
+        *f.bands,
+        f.ellipse,
+        f.axes_,
+        f.bar,
+        f.bar_text,
+        ax.title,
+        f.law_depth,
+        f.law_across,
+        f.here,
+    )
     view.animate(ax_law.title)
     f.ax_law = ax_law
     return f
@@ -489,20 +508,27 @@ def ray_angle() -> Demo:
         for sign, ray, pair in ((-1, rays[0], bands[:2]), (1, rays[1], bands[2:])):
             d = np.array([sign * np.sin(half), np.cos(half)])  # toward its camera, above the corner
             n = np.array([d[1], -d[0]])
-            ray.set_data(*np.outer([-20, 20], d).T)
+            ray.set_data(*np.outer([-60, 60], d).T)  # the panel is in units of e
             for s, band in zip((-1, 1), pair, strict=True):
-                band.set_data(*(np.outer([-20, 20], d) + s * e * n).T)
-        fig.ellipse.set_data(k95 * across * np.cos(ring), k95 * depth * np.sin(ring))
+                band.set_data(*(np.outer([-60, 60], d) + s * n).T)
+        fig.ellipse.set_data(k95 * across / e * np.cos(ring), k95 * depth / e * np.sin(ring))
+        x0, y0 = (
+            -RAY_HALF[0] + 1.5,
+            -RAY_HALF[1] + 2.0,
+        )  # the scale bar, bottom left: 1 mm in units of e
+        fig.bar.set_data([x0, x0 + 1 / e], [y0, y0])
+        fig.bar_text.set_position((x0, y0 + 0.8))
         c = RAY_MM_PER_PX * v["pick"]
         fig.law_depth.set_data(ALPHAS, c / np.sin(np.radians(ALPHAS) / 2))
         fig.law_across.set_data(ALPHAS, c / np.cos(np.radians(ALPHAS) / 2))
         fig.here.set_data([v["alpha"]] * 2, [depth, across])
         fig.axes_.set_data(
-            [-k95 * across, k95 * across, np.nan, 0, 0], [0, 0, np.nan, -k95 * depth, k95 * depth]
+            np.array([-across, across, np.nan, 0, 0]) * k95 / e,
+            np.array([0, 0, np.nan, -depth, depth]) * k95 / e,
         )
-        ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px")
+        ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px: e = {e:.3f} mm")
         ax_law.title.set_text(f"the two laws, c = {c:.3f} mm at {v['pick']:.2f} px picks")
-        in_frame = bool(k95 * depth <= 10 and k95 * across <= 6)
+        in_frame = bool(k95 * depth / e <= RAY_HALF[1] and k95 * across / e <= RAY_HALF[0])
         state.update(depth_mm=depth, across_mm=across, in_frame=in_frame)
         readout.value = monospace(
             f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (ellipse half-axis {k95 * depth:5.2f} mm)\n"
