@@ -153,6 +153,13 @@ _PLANE_MISTAKES = (
         "R - t n^T / d moves it. H = K (R - t n^T / d) K^-1.",
     ),
     Mistake(
+        "K for K^-1",
+        lambda c: _with(c, c.R - c.t @ c.n / c.d, right=c.K),
+        "you wrote K (R - t n^T / d) K: the right-hand K must be inverted. K^-1 takes the pixels of "
+        "image 1 to rays, which R - t n^T / d moves; K then takes them back to pixels: "
+        "H = K (R - t n^T / d) K^-1 (np.linalg.inv(K) on the right).",
+    ),
+    Mistake(
         "K^T for K^-1",
         lambda c: _with(c, c.R - c.t @ c.n / c.d, right=c.K.T),
         "you used K^T where the formula has K^-1 (np.linalg.inv(K)): the transpose of K is not its "
