@@ -1,4 +1,4 @@
-"""Exercise 4 of lesson 07: warping an image by inverse mapping, nearest neighbour (`warp_nearest`)."""
+"""Exercise 5 of lesson 07: warping an image by inverse mapping, nearest neighbour (`warp_nearest`)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Exercise 5 of lesson 07: the homography a plane induces between two views (`plane_homography`)."""
+"""Exercise 4 of lesson 07: the homography a plane induces between two views (`plane_homography`)."""
 
 from __future__ import annotations
 
