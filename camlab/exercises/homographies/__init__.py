@@ -1,8 +1,8 @@
 """Exercises for lesson 07, homographies.
 
 Applying a homography (:mod:`.apply`), the normalised DLT (:mod:`.dlt`), the number of RANSAC
-samples (:mod:`.ransac`), the inverse warp (:mod:`.inverse_warp`) and the homography of a plane
-(:mod:`.plane`).
+samples (:mod:`.ransac`), the homography of a plane (:mod:`.plane`) and the inverse warp
+(:mod:`.inverse_warp`).
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ from __future__ import annotations
 from . import dlt
 from . import apply
 from . import ransac
-from . import inverse_warp
 from . import plane
+from . import inverse_warp
 
 # isort: on
 

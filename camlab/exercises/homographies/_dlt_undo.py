@@ -1,9 +1,10 @@
-"""Exercise 2 of lesson 07: a normalised DLT's fit mapped back wrongly, the slips its check names."""
+"""Exercise 2 of lesson 07: a normalised DLT's fit mapped back wrongly, and the h33 slips; the slips its check names."""
 
 from __future__ import annotations
 
 import numpy as np
 
+from ...projective import map_points
 from .._core import Mistake
 
 
@@ -96,3 +97,38 @@ UNDO_MISTAKES = (
     ),
 )
 """A normalised DLT's fit H_n = T_dst H inv(T_src) mapped back wrongly, in the order the diagnosis tests them."""
+
+
+def divided_by_noise(got, expected) -> bool:
+    """True for an H divided by its h33 where the true h33 is 0: h33 comes back 1, the rest ~1e9 to 1e18.
+
+    The SVD's h33 there is rounding noise (~1e-17); dividing keeps h's direction, so it passes with a
+    note. OpenCV's h33 = 1 is solved for (entries ~1e9): no note, hence the bar 1e12.
+    """
+    g, e = np.asarray(got, dtype=float), np.asarray(expected, dtype=float)
+    if g.shape != (3, 3) or abs(e[2, 2]) > 1e-9 * np.linalg.norm(e) or not np.isfinite(g).all():
+        return False
+    return bool(abs(abs(g[2, 2]) - 1.0) < 1e-6 and np.linalg.norm(g) > 1e12)
+
+
+def h33_slip(g, src, dst, expected) -> str:
+    """Name an H forced to h33 = 1, or divided by h33, on the input whose true h33 is 0 ("" otherwise)."""
+    e = np.asarray(expected, dtype=float)
+    if abs(e[2, 2]) > 1e-9 * np.linalg.norm(e):
+        return ""
+    if g.shape == (3, 3) and not np.isfinite(g).all():
+        return (
+            "your H holds inf or nan: you divided H by its h33, which is exactly 0 here. This input's "
+            "true h33 is 0 (H sends the pixel origin to infinity), so H has no h33 = 1 form. Return the "
+            "SVD's unit-norm h as it is (h.reshape(3, 3), any scale)."
+        )
+    if not np.isfinite(g).all() or abs(g[2, 2]) < 1e-6 * np.linalg.norm(g):
+        return ""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        off = np.nanmax(np.linalg.norm(map_points(g, src) - dst, axis=1))
+    return (
+        f"you fixed h33 = 1 (least squares for the other 8 entries, section 5's aside). "
+        f"That assumes H does not send the pixel origin (0, 0) to infinity, but this H does: its true "
+        f"h33 is 0, so no H with h33 = 1 fits and yours lands up to {off:.3g} px off these exact pairs. "
+        f"Solve A h = 0 for the unit-norm h by SVD (the last row of Vt), which assumes nothing about h33."
+    )

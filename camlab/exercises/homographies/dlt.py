@@ -11,7 +11,7 @@ from ... import homography as hg
 from ...projective import hartley_normalise, map_points
 from .._answers import same_up_to_scale, shape_problem
 from .._core import Exercise, first_mistake, register_exercise
-from ._dlt_undo import UNDO_MISTAKES
+from ._dlt_undo import UNDO_MISTAKES, divided_by_noise, h33_slip
 
 # A patch far from the origin (like a crop of a large photo) with 1 px of noise: there the
 # unnormalised DLT is off by tens of pixels, while any Hartley-style normalisation is off by
@@ -321,6 +321,15 @@ def _dlt_success_note(run) -> str:
             f"the centroid, so the noise is averaged over fewer equations (a DLT with r1 and r2 is "
             f"{_reference_median():.2f} px off at the median). Section 5 and H&Z (4.3) keep r1 and r2."
         )
+    near, image = _dlt_cases()[-1]
+    got = np.asarray(run(near.copy(), image.copy()), dtype=float)
+    if divided_by_noise(got, H_ORIGIN_AT_INFINITY):
+        note = (note + "\n" if note else "") + (
+            f"Note: on test input 6 your H has h33 = 1 and entries up to {np.abs(got).max():.2g}: you "
+            f"divided by h33. Its true h33 is 0, so the SVD's h33 was rounding noise (about 1e-17); the "
+            f"ratios of the entries survive, so H is still right up to scale, but an h33 of exactly 0 "
+            f"would have given inf and nan. Return the unit-norm h as it is."
+        )
     return line + ("\n" + note if note else "")
 
 
@@ -329,27 +338,8 @@ def _noisy_case(expected) -> bool:
     return _far_error(expected) < FAR_TOLERANCE_PX
 
 
-def _divided_by_noise(got, expected) -> bool:
-    """True for an H divided by its h33 where the true h33 is 0: h33 comes back 1, the rest ~1e9 to 1e18.
-
-    The SVD's h33 there is rounding noise (~1e-17 of a unit-norm h); dividing by it keeps the
-    direction of h, so an up-to-scale comparison alone would pass it. OpenCV's findHomography
-    also returns h33 = 1, but its h33 is a small number it solved for, not noise (entries ~1e9
-    here): it passes, so the bar is 1e12.
-    """
-    g, e = np.asarray(got, dtype=float), np.asarray(expected, dtype=float)
-    if g.shape != (3, 3) or abs(e[2, 2]) > 1e-9 * np.linalg.norm(e) or not np.isfinite(g).all():
-        return False
-    return bool(abs(abs(g[2, 2]) - 1.0) < 1e-6 and np.linalg.norm(g) > 1e12)
-
-
 def _same_homography(got, expected) -> bool:
-    """Equal up to scale (exact inputs), or, on the noisy input, within FAR_TOLERANCE_PX of the truth.
-
-    Never an H divided by an h33 that is rounding noise (:func:`_divided_by_noise`).
-    """
-    if _divided_by_noise(got, expected):
-        return False
+    """Equal up to scale (exact inputs), or, on the noisy input, within FAR_TOLERANCE_PX of the truth."""
     if same_up_to_scale(got, expected, rtol=1e-6):
         return True
     g = np.asarray(got, dtype=float)
@@ -359,12 +349,16 @@ def _same_homography(got, expected) -> bool:
 
 
 def _dlt_diagnosis(args, got, expected) -> str:
+    if np.shape(got) == (3, 3) and not np.isfinite(np.asarray(got, dtype=float)).all():
+        return h33_slip(np.asarray(got, dtype=float), *args, expected) or shape_problem(
+            got, expected
+        )
     problem = shape_problem(got, expected)
     if problem:
         return problem + ". Return H as a (3, 3) array: h.reshape(3, 3)."
     src, dst = args
     g = np.asarray(got, dtype=float)
-    cause = _h33_slip(g, src, dst, expected)
+    cause = h33_slip(g, src, dst, expected)
     if cause:
         return cause
     if same_up_to_scale(g, np.linalg.inv(expected), rtol=1e-5):
@@ -404,34 +398,18 @@ def _dlt_diagnosis(args, got, expected) -> str:
     )
 
 
-def _h33_slip(g, src, dst, expected) -> str:
-    """Name an H forced to h33 = 1, or divided by h33, on the input whose true h33 is 0 ("" otherwise)."""
-    e = np.asarray(expected, dtype=float)
-    if abs(e[2, 2]) > 1e-9 * np.linalg.norm(e):
-        return ""
-    if _divided_by_noise(g, e):
-        return (
-            f"you divided H by its h33 (h33 = 1, but the largest entry is {np.abs(g).max():.2g}). This "
-            f"input's true h33 is 0: H sends the pixel origin to infinity, and the SVD's h33 is rounding "
-            f"noise (about 1e-17), so dividing by it blows the other entries up to {np.abs(g).max():.2g}. "
-            f"Return the SVD's unit-norm h as it is (h.reshape(3, 3), any scale)."
-        )
-    if not np.isfinite(g).all() or abs(g[2, 2]) < 1e-6 * np.linalg.norm(g):
-        return ""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        off = np.nanmax(np.linalg.norm(map_points(g, src) - dst, axis=1))
-    return (
-        f"you fixed h33 = 1 (least squares for the other 8 entries, section 5's aside). "
-        f"That assumes H does not send the pixel origin (0, 0) to infinity, but this H does: its true "
-        f"h33 is 0, so no H with h33 = 1 fits and yours lands up to {off:.3g} px off these exact pairs. "
-        f"Solve A h = 0 for the unit-norm h by SVD (the last row of Vt), which assumes nothing about h33."
-    )
-
-
 def _dlt_h33_fixed(src, dst):
     """The DLT with h33 = 1 fixed, by least squares on the raw pixels (a tutorial's form: no SVD)."""
     A = _dlt_rows(src, dst)
     return np.append(np.linalg.lstsq(A[:, :8], -A[:, 8], rcond=None)[0], 1.0).reshape(3, 3)
+
+
+def _dlt_divided_by_exact_zero(src, dst):
+    """A DLT divided by its h33 where the SVD's h33 came out exactly 0 (inf and nan entries)."""
+    H = dlt_homography(src, dst)
+    H[2, 2] *= abs(H[2, 2]) > 1e-12 * np.linalg.norm(H)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return H / H[2, 2]
 
 
 def _dlt_raw_then_undone(src, dst):
@@ -759,10 +737,7 @@ register_exercise(
             (lambda s, d: hg.estimate_homography(s, d).tolist(), "you returned a list"),
             (_dlt_h33_fixed, "you fixed h33 = 1"),
             (_dlt_raw_then_undone, "you built A from the raw pixels, yet undid"),
-            (
-                lambda s, d: (lambda H: H / H[2, 2])(dlt_homography(s, d)),
-                "you divided H by its h33",
-            ),
+            (_dlt_divided_by_exact_zero, "you divided H by its h33, which is exactly 0"),
             (_dlt_points_times_t, "with X @ T, but"),
             (
                 lambda s, d: hg.estimate_homography(np.asarray(s)[:4], np.asarray(d)[:4]),

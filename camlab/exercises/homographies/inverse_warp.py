@@ -1,4 +1,4 @@
-"""Exercise 4 of lesson 07: warping an image by inverse mapping, nearest neighbour (`warp_nearest`)."""
+"""Exercise 5 of lesson 07: warping an image by inverse mapping, nearest neighbour (`warp_nearest`)."""
 
 from __future__ import annotations
 
@@ -90,12 +90,8 @@ def _bilinear(image, H, out_shape):
     fu, fv = su - u0, sv - v0
     padded = np.pad(img, 1)
     out = np.zeros(su.shape)
-    for du, dv, weight in (
-        (0, 0, (1 - fu) * (1 - fv)),
-        (1, 0, fu * (1 - fv)),
-        (0, 1, (1 - fu) * fv),
-        (1, 1, fu * fv),
-    ):
+    for du, dv in ((0, 0), (1, 0), (0, 1), (1, 1)):
+        weight = (fu if du else 1 - fu) * (fv if dv else 1 - fv)
         cu, cv = np.clip(u0 + du + 1, 0, w + 1), np.clip(v0 + dv + 1, 0, h + 1)
         out += weight * padded[cv, cu]
     return out
@@ -149,9 +145,8 @@ def _indexed_u_v_caught(image, H, out_shape):
     v, u = np.mgrid[0 : out_shape[0], 0 : out_shape[1]]
     X = np.stack([u, v, np.ones_like(u)], axis=-1) @ np.linalg.inv(np.asarray(H, dtype=float)).T
     iu, iv = np.rint(X[..., 0] / X[..., 2]).astype(int), np.rint(X[..., 1] / X[..., 2]).astype(int)
-    read = (
-        (iu >= 0) & (iu < w) & (iv >= 0) & (iv < h) & (iu < h) & (iv < w)
-    )  # passes the test, no IndexError
+    tested = (iu >= 0) & (iu < w) & (iv >= 0) & (iv < h)
+    read = tested & (iu < h) & (iv < w)  # passes the test, no IndexError
     return np.where(read, image[np.clip(iu, 0, h - 1), np.clip(iv, 0, w - 1)], 0.0)
 
 
@@ -177,6 +172,21 @@ def _warp_source_one_based(image, H, out_shape):
             u, v = int(np.rint(x / w)), int(np.rint(y / w))
             if 1 <= u <= image.shape[1] and 1 <= v <= image.shape[0]:
                 out[v_out, u_out] = image[v - 1, u - 1]
+    return out
+
+
+_FLIP = np.array([[0.0, 1, 0], [1, 0, 0], [0, 0, 1]])  # (u', v', 1) -> (v', u', 1)
+
+
+def _third_row_constant(M):
+    """M with its third row (0, 0, m33): dividing by it is dividing by m33 instead of by w."""
+    return np.vstack([M[:2], [0.0, 0.0, M[2, 2]]])
+
+
+def _loops_swapped(image, H, out_shape):
+    """Loops over range(out_shape[1]) rows and range(out_shape[0]) columns, writes past the array skipped."""
+    out, n = np.zeros(out_shape), min(out_shape)
+    out[:n, :n] = _reference(image, H, out_shape)[:n, :n]
     return out
 
 
@@ -211,6 +221,33 @@ _WARP_MISTAKES = (
         lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, divide=False),
         "you did not divide by w, the third coordinate of H^-1 (u', v', 1): the source point is (x/w, y/w). "
         "H^-1 is not scaled to h33 = 1 here (and has a projective row in test 2), so w is not 1.",
+    ),
+    Mistake(
+        "lifted (v', u', 1)",
+        lambda c: _warp(c.image, np.linalg.inv(c.H) @ _FLIP, c.shape),
+        "you lifted the output pixel as (v', u', 1): out[v', u'] is the point (u', v') (column first), "
+        "so map Hinv @ [u_out, v_out, 1], with the column index first.",
+    ),
+    Mistake(
+        "divided by Hinv[2, 2]",
+        lambda c: _warp(c.image, _third_row_constant(np.linalg.inv(c.H)), c.shape),
+        "you divided by Hinv[2, 2] (h33 of H^-1), but w is the third coordinate of each mapped point, "
+        "w = h31 u' + h32 v' + h33, which changes from pixel to pixel (test 2's H has a projective row): "
+        "divide by the w of Hinv @ [u', v', 1] itself (exercise 1's slip, here with H^-1).",
+    ),
+    Mistake(
+        "scaled to h33 = 1, no division",
+        lambda c: _warp(c.image, np.linalg.inv(c.H / c.H[2, 2]), c.shape, divide=False),
+        "you scaled H to h33 = 1 and then did not divide by w: that fixes only the scale, while w = "
+        "h31 u' + h32 v' + h33 of Hinv @ [u', v', 1] still changes from pixel to pixel (test 2's H has a "
+        "projective row). Divide x and y by that w.",
+    ),
+    Mistake(
+        "loops over out_shape swapped",
+        lambda c: _loops_swapped(c.image, c.H, c.shape),
+        "only the top-left square of the output is filled, as if your loops ran v' over "
+        "range(out_shape[1]) and u' over range(out_shape[0]). out_shape is (height, width): loop v' in "
+        "range(out_shape[0]) and u' in range(out_shape[1]).",
     ),
     Mistake(
         "truncated",
@@ -423,6 +460,12 @@ def _nan_outside(got, expected) -> str:
 
 
 def _index_hint(exc: Exception, args: tuple) -> str:
+    sizes = {f"with size {n}" for n in args[2]} - {f"with size {n}" for n in np.shape(args[0])}
+    if isinstance(exc, IndexError) and any(size in str(exc) for size in sizes):
+        return (
+            "an index ran past the *output* array: out_shape is (height, width), so loop v' over "
+            "range(out_shape[0]) and u' over range(out_shape[1]) and write out[v', u']."
+        )
     if isinstance(exc, IndexError):
         return (
             "an index ran past the picture. Images are indexed image[v, u] (row v first, column u second), "
@@ -541,6 +584,13 @@ register_exercise(
                 "pixel-*corner*",
             ),
             (_cv2_default, "cv2.INTER_NEAREST"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H) @ _FLIP, s), "lifted the output pixel"),
+            (lambda im, H, s: _warp(im, _third_row_constant(np.linalg.inv(H)), s), "Hinv[2, 2]"),
+            (
+                lambda im, H, s: _warp(im, np.linalg.inv(H / H[2, 2]), s, divide=False),
+                "scaled H to h33 = 1",
+            ),
+            (_loops_swapped, "range(out_shape[1])"),
         ),
         ndarray_only=True,
         teaching=warp_nearest,

@@ -1,4 +1,4 @@
-"""Exercise 5 of lesson 07: the homography a plane induces between two views (`plane_homography`)."""
+"""Exercise 4 of lesson 07: the homography a plane induces between two views (`plane_homography`)."""
 
 from __future__ import annotations
 
@@ -151,6 +151,13 @@ _PLANE_MISTAKES = (
         lambda c: c.K @ (c.R - c.t @ c.n / c.d),
         "you left out K^-1 on the right: H first turns a pixel of image 1 into a ray, K^-1 x1, before "
         "R - t n^T / d moves it. H = K (R - t n^T / d) K^-1.",
+    ),
+    Mistake(
+        "K for K^-1",
+        lambda c: _with(c, c.R - c.t @ c.n / c.d, right=c.K),
+        "you wrote K (R - t n^T / d) K: the right-hand K must be inverted. K^-1 takes the pixels of "
+        "image 1 to rays, which R - t n^T / d moves; K then takes them back to pixels: "
+        "H = K (R - t n^T / d) K^-1 (np.linalg.inv(K) on the right).",
     ),
     Mistake(
         "K^T for K^-1",
