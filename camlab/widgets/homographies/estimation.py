@@ -53,12 +53,8 @@ def _ransac_figure() -> SimpleNamespace:
     rejected = view.animate(ax.add_collection(LineCollection([], lw=0.5, color=palette.GREY)))
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
-    box_true = (
-        view.animate(  # a wide grey band (3.4:1 on white): RANSAC's dashed frame usually lies on it
-            ax.plot([], [], "-", color="0.55", lw=6, label="true H (image frame), under RANSAC's")[
-                0
-            ]
-        )
+    box_true = view.animate(  # a wide band (3.4:1 on white): RANSAC's dashed frame lies on it
+        ax.plot([], [], "-", color="0.55", lw=6, label="true H (image frame), under RANSAC's")[0]
     )
     box_est = view.animate(ax.plot([], [], "--", color="k", lw=1.5, label="RANSAC H")[0])
     best = view.animate(
