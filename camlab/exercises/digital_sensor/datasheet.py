@@ -345,6 +345,17 @@ _MISTAKES = (
         ),
     ),
     Mistake(
+        "pitches from the other axis's pixel count",
+        lambda s: (
+            (_near(s.g[0, 0], s.f_mm * s.H / s.w_mm) and _near(s.g[1, 1], s.f_mm * s.W / s.h_mm))
+            and (not _near(s.W, s.H))
+        ),
+        (
+            "the pitches divide each sensor side by the other side's pixel count: s_x = width / W (W pixels across), "
+            "s_y = height / H (H pixels down), not width / H and height / W"
+        ),
+    ),
+    Mistake(
         "f_x and f_y swapped",
         lambda s: _near(s.g[0, 0], s.fy) and _near(s.g[1, 1], s.fx) and (not _near(s.fx, s.fy)),
         (
