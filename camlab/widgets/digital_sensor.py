@@ -570,8 +570,8 @@ def bit_depth_and_noise():
         )
         ax_p.set_title(
             f"row {row} (blue ticks): recorded (blue) against true (wide grey)\n"
-            f"e-: white {electrons['white']:.0f}{clips}, dark uniform {electrons['uniform']:.1f}, "
-            f"1 DN = {dn}",
+            f"electrons: white {electrons['white']:.0f}{clips}\n"  # 3 lines: a clipped white's line fits
+            f"dark uniform {electrons['uniform']:.1f}, 1 DN = {dn}",
             fontsize=9,
         )
         readout.value = monospace(
