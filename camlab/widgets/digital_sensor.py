@@ -608,7 +608,7 @@ def _demosaic_readout(truth, out, reference, crop, method: str) -> str:
         scores = [sensor.psnr(truth[..., c], img[..., c], border=2) for c in range(3)]
         scores.append(sensor.psnr(truth, img, border=2))
         shown = (
-            "  — (the reference itself)"
+            "".join(f"{'—':>5}" for _ in scores) + "  (reference)"  # in the columns
             if np.isinf(scores[-1])
             else "".join(f"{v:5.1f}" for v in scores)
         )
