@@ -142,6 +142,19 @@ def _one_pair_gains(darks, flats) -> np.ndarray:
     return np.array([means[brightest] / variances[brightest]])
 
 
+def _dimmest_pair_gain(darks, flats) -> float:
+    """(mean - the darks' mean) / var of the dimmest flat pair alone, where read noise weighs most."""
+    means, variances = _pair_stats(flats)
+    dimmest = np.argmin(means)
+    return (means[dimmest] - _dark_mean(darks)) / variances[dimmest]
+
+
+def _dimmest_floor_share(darks, flats) -> float:
+    """The share of the dimmest pair's variance that the dark pair's (read noise and rounding) makes up."""
+    d1, d2 = (np.asarray(d, dtype=float) for d in darks)
+    return np.var(d1 - d2) / 2 / _pair_stats(flats)[1][np.argmin(_pair_stats(flats)[0])]
+
+
 def _pair_mean_variance_gain(darks, flats) -> float:
     """The photon-transfer fit with the variance of the pair's mean image, var((a + b) / 2), for each pair."""
     means, _ = _pair_stats(flats)
@@ -229,6 +242,17 @@ _GAIN_FORMS = (
             f"your gain, {c.got[0]:.3g}, is the brightest flat pair's mean / var with the black level still in the mean: the "
             f"frames' mean at no light (the darks' mean, {_dark_mean(c.args[0]):.0f} DN here) is no signal. Subtract "
             "it from the pair's mean, or fit var against mean over all pairs with an intercept, np.polyfit(mean, var, 1)"
+        ),
+    ),
+    Mistake(
+        "the dimmest pair's mean / var",
+        lambda c: np.isclose(
+            c.got[0], _dimmest_pair_gain(*c.args), rtol=0.01
+        ),  # 1 %: no chance match
+        lambda c: (
+            f"your gain, {c.got[0]:.3g}, is the dimmest flat pair's mean / var: there the read noise and the 1/12 "
+            f"DN**2 of rounding are a large part of the variance ({_dimmest_floor_share(*c.args):.0%} of it), so "
+            "mean / var comes out low. Take g from the slope of the line over all pairs, np.polyfit(mean, var, 1)"
         ),
     ),
     Mistake(

@@ -169,9 +169,8 @@ def pixel_pitch():
         readout.value = monospace(
             f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
             f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
-            # two decimals, the total the sum of the parts as printed, so the line adds up
-            f"horizontal FOV {round(left, 2) + round(right, 2):.2f}°\n"
-            f"  = {left:.2f}° left + {right:.2f}° right of the axis"
+            f"horizontal FOV {fov:.1f}°\n"
+            f"  left {left:.1f}°, right {right:.1f}° of the axis"
         )
 
     return build_demo(
@@ -460,6 +459,10 @@ def _snr_readout(expo, read_noise, step, full_scale, bg, clipped) -> SimpleNames
     _, half_text = _model_snr(0.5 * expo * full_well, read_noise, step, full_scale)
     n_bg = BACKGROUND * expo * full_well
     model_bg, model_text = _model_snr(n_bg, read_noise, step, full_scale)
+    if (
+        clipped > 0.02 and n_bg < full_scale
+    ):  # as for the measurement: a clipped level has no model SNR
+        model_text = f"-- ({clipped:.0%} of it clips at full scale)"
     noise_bg = float(np.sqrt(n_bg + read_noise**2))
     one_code = float(np.unique(bg, return_counts=True)[1].max() / bg.size)
     if clipped > 0.02:
@@ -485,6 +488,7 @@ def _snr_readout(expo, read_noise, step, full_scale, bg, clipped) -> SimpleNames
         background_clipped=clipped,
         noise_background=noise_bg,
         background_reason=why,
+        background_model=model_text,
     )
     return SimpleNamespace(text=text, state=state)
 
@@ -509,9 +513,9 @@ def bit_depth_and_noise():
         to 1 e-/DN, :func:`analogue_gain`) and ``read_noise`` (electrons), the figure (the recorded photo and one row's profile against
         the truth) and ``state`` (``levels``, ``snr`` at half of white, ``rms_error`` the recorded
         image's rms difference from the true one, linear, over the whole frame, as a fraction of white, ``electrons`` of the white, the dark uniform and the background,
-        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``shown_row`` its recording as the profile shows it (sRGB), ``codes`` how many codes the frame uses, ``gain`` the analogue gain, ``full_scale`` the converter's full scale in
+        ``dn_electrons`` the electrons per digital number, ``clean_row`` the profiled row's truth, linear, ``shown_row`` its recording as the profile shows it (sRGB), ``background_spread`` the std of the whole grey background as shown (sRGB), ``codes`` how many codes the frame uses, ``gain`` the analogue gain, ``full_scale`` the converter's full scale in
         electrons, ``snr_background`` the model's and the measured SNR in the grey background,
-        the measurement inf where :func:`_snr_readout` measures none (``background_reason`` says why),
+        the measurement inf where :func:`_snr_readout` measures none (``background_reason`` says why, ``background_model`` the readout's words for the model),
         ``background_one_code`` the share on its commonest code, ``background_clipped`` the share
         clipped at the top code and ``noise_background`` its noise in electrons).
     """
@@ -554,6 +558,7 @@ def bit_depth_and_noise():
             dn_electrons=step,
             clean_row=clean[row],
             shown_row=sensor.gamma_encode(shown[row]),
+            background_spread=float(sensor.gamma_encode(shown[clean == BACKGROUND]).std()),
             codes=int(np.unique(dn).size),
             gain=gain,
             full_scale=full_well / gain,
@@ -565,8 +570,8 @@ def bit_depth_and_noise():
         )
         ax_p.set_title(
             f"row {row} (blue ticks): recorded (blue) against true (wide grey)\n"
-            f"e-: white {electrons['white']:.0f}{clips}, dark uniform {electrons['uniform']:.1f}, "
-            f"1 DN = {dn}",
+            f"electrons: white {electrons['white']:.0f}{clips}\n"  # 3 lines: a clipped white's line fits
+            f"dark uniform {electrons['uniform']:.1f}, 1 DN = {dn}",
             fontsize=9,
         )
         readout.value = monospace(
@@ -603,7 +608,7 @@ def _demosaic_readout(truth, out, reference, crop, method: str) -> str:
         scores = [sensor.psnr(truth[..., c], img[..., c], border=2) for c in range(3)]
         scores.append(sensor.psnr(truth, img, border=2))
         shown = (
-            "  — (the reference itself)"
+            "".join(f"{'—':>5}" for _ in scores) + "  (reference)"  # in the columns
             if np.isinf(scores[-1])
             else "".join(f"{v:5.1f}" for v in scores)
         )

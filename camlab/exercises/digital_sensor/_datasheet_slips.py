@@ -1,4 +1,4 @@
-"""Three more slips of lesson 03's datasheet exercise (reviews G12-8, F12-7, N12-7), rows of its mistake table.
+"""More slips of lesson 03's datasheet exercise (reviews G12-8, F12-7, N12-7), rows of its mistake table.
 
 Each row reads the context :mod:`.datasheet` builds: ``g`` the answer, ``f_mm``, ``w_mm``, ``h_mm``,
 ``W``, ``H``, ``cx``, ``cy``.
@@ -55,3 +55,31 @@ EQUIVALENT_OVER_FULL_WIDTH = Mistake(
     ),
 )
 """The 35 mm-equivalent focal length over a full frame's 36 mm width: f_x = f_eq W / 36 (review N12-7)."""
+
+
+PITCH_FROM_OTHER_COUNT = Mistake(
+    "pitches from the other axis's pixel count",
+    lambda s: (
+        (_near(s.g[0, 0], s.f_mm * s.H / s.w_mm) and _near(s.g[1, 1], s.f_mm * s.W / s.h_mm))
+        and (not _near(s.W, s.H))
+    ),
+    (
+        "the pitches divide each sensor side by the other side's pixel count: s_x = width / W (W pixels across), "
+        "s_y = height / H (H pixels down), not width / H and height / W"
+    ),
+)
+"""Each side divided by the other side's pixel count: s_x = width / H, s_y = height / W (review A13-11)."""
+
+
+PITCH_SLIPS = (
+    PITCH_FROM_OTHER_COUNT,
+    Mistake(
+        "f_x and f_y swapped",
+        lambda s: _near(s.g[0, 0], s.fy) and _near(s.g[1, 1], s.fx) and (not _near(s.fx, s.fy)),
+        (
+            "f_x and f_y are swapped: f_x = f / s_x with the horizontal pitch s_x = width / W, f_y = f / s_y with "
+            "s_y = height / H"
+        ),
+    ),
+)
+"""The pitch slips, in the order the table tries them."""

@@ -9,7 +9,7 @@ import numpy as np
 from ... import sensor
 from .._answers import SameArray, Tolerance, shape_problem
 from .._core import Exercise, Mistake, first_mistake, register_exercise
-from ._datasheet_slips import AXIS_AND_SIGN_SLIPS, EQUIVALENT_OVER_FULL_WIDTH
+from ._datasheet_slips import AXIS_AND_SIGN_SLIPS, EQUIVALENT_OVER_FULL_WIDTH, PITCH_SLIPS
 
 # -- intrinsics_from_datasheet -----------------------------------------------------------------
 
@@ -344,14 +344,7 @@ _MISTAKES = (
             "the pitch is sensor width / W: W pixels tile the width (W - 1 counts the gaps between centres)"
         ),
     ),
-    Mistake(
-        "f_x and f_y swapped",
-        lambda s: _near(s.g[0, 0], s.fy) and _near(s.g[1, 1], s.fx) and (not _near(s.fx, s.fy)),
-        (
-            "f_x and f_y are swapped: f_x = f / s_x with the horizontal pitch s_x = width / W, f_y = f / s_y with "
-            "s_y = height / H"
-        ),
-    ),
+    *PITCH_SLIPS,
     Mistake(
         "square pixels assumed",
         lambda s: (_near(s.g[1, 1], s.fx) or _near(s.g[0, 0], s.fy)) and (not _near(s.fx, s.fy)),

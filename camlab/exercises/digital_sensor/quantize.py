@@ -168,6 +168,19 @@ _MISTAKES = (
         ),
     ),
     Mistake(
+        "clipped only the bottom",
+        lambda s: (
+            np.any(s.img > 1)
+            and _same_after_cast(s.g, np.maximum(np.rint(s.img * s.levels), 0))
+            and (not _same_after_cast(s.g, s.right))
+        ),
+        lambda s: (
+            f"you clipped only the bottom: an overexposed value above 1 scales past the top code "
+            f"2**bits - 1 = {s.levels} (and wraps in a small unsigned type); the converter saturates there, so clip "
+            f"the top too, np.clip(..., 0, 2**bits - 1)"
+        ),
+    ),
+    Mistake(
         "I * 2**bits - 1",
         lambda s: any(
             _same_after_cast(s.g, c)
