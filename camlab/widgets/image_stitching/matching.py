@@ -88,9 +88,9 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        # a fixed 1 in MATCH_STRIDE of each kind (the photos stay visible): the drawn share of
-        # right matches is the true one, and fewer matches always draw fewer lines
-        show, every = thin_matches(good, every=MATCH_STRIDE)
+        # a fixed 1 in MATCH_STRIDE (the photos stay visible), chosen by the query keypoint's
+        # index: a match keeps its line at every setting, so a filter removes only its own lines
+        show, every = thin_matches(good, every=MATCH_STRIDE, key=m.idx1)
         for kp in kps:
             kp.set_visible(bool(v["keypoints"]))
         art["good"].set_segments(seg[good & show])
