@@ -423,3 +423,29 @@ def test_gains_check_names_the_real_cause_of_a_misweighted_prior(student, cause)
         ex.check_gains_from_overlaps(student)
     assert cause in str(info.value)
     assert "sigma_N = 10/255" not in str(info.value)  # a prior too weak is not blamed on sigma_N
+
+
+def test_focal_inverse_route_named_on_the_no_rotation_input():
+    """C13: f_from from the columns of H^-1 passes every turn; on the last input (no rotation) the check
+    names that route (the orthogonality formulas on H^-1 give f^2 > 0 there, all four on H give f^2 < 0)."""
+    from camlab.exercises.image_stitching import focal as F
+
+    H, shape = F._focal_cases()[-1]
+    on_h = F._focal_formulas(H, shape, squared=True)
+    on_inv = F._focal_formulas(np.linalg.inv(H), shape, squared=True)
+    assert max(on_h.values()) < 0 and on_inv["c1"] > 0 and on_inv["r1"] > 0
+
+    def inverse_route(H, shape):
+        return F.focal_from_rotation_homography(np.linalg.inv(H), shape)[::-1]
+
+    with pytest.raises(AssertionError, match="test input 8 of 8(?s:.*)formulas give on H\\^-1"):
+        ex.check_focal_from_rotation_homography(inverse_route)
+
+
+def test_gains_slips_fail_first_on_the_dark_trio_by_percents():
+    """C13: a weight slip must fail first where it moves the gains by percents, not by 2e-4."""
+    from camlab.exercises.image_stitching import gains as G
+
+    cases = G._gains_cases()
+    moved = [np.abs(G._variant("no factor 2")(*a) / G._reference(*a) - 1).max() for a in cases]
+    assert moved[0] > 0.02 and max(moved[1:]) < 0.002
