@@ -411,7 +411,7 @@ def blending_seams() -> Demo:
         title.set_text(
             f"{_blend_name(v['method'], int(v['levels']))}: exposures 30% apart, "
             + (f"gains {gains[0]:.3f}, {gains[1]:.3f}" if v["gains"] else "before gains")
-            + (f"; view 2 {offset} px off" if offset else "")
+            + (f"; view 2 moved {offset} px" if offset else "")
         )
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
         marks = seam_marks["overwrite" if v["method"] == "overwrite" else "middle"]
