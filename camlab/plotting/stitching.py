@@ -118,7 +118,9 @@ class Thinned(NamedTuple):
     every: int
 
 
-def thin_matches(good: np.ndarray, limit: int = 200, every: int | None = None) -> Thinned:
+def thin_matches(
+    good: np.ndarray, limit: int = 200, every: int | None = None, key: np.ndarray | None = None
+) -> Thinned:
     """Which matches to draw: 1 in k of the right ones and 1 in k of the wrong ones.
 
     Both kinds are thinned by the same stride k, so the share of right matches among the
@@ -135,6 +137,11 @@ def thin_matches(good: np.ndarray, limit: int = 200, every: int | None = None) -
         The most lines to draw (each kind may round up by one); ignored when ``every`` is given.
     every : int or None, optional
         A fixed stride k (1: draw all).
+    key : (n,) array_like of int or None, optional
+        A stable number per match (e.g. its query keypoint's index): with it, a match is drawn
+        when ``key % k == 0``, so a match that survives a re-filtering keeps its line and a
+        filter removes only the lines of the matches it removes. The drawn share of right
+        matches is then the true share only on average (a few lines either way).
 
     Returns
     -------
@@ -154,6 +161,14 @@ def thin_matches(good: np.ndarray, limit: int = 200, every: int | None = None) -
         if limit < 1:
             raise ValueError(f"thin_matches: limit must be a positive number of lines, got {limit}")
         every = max(1, -(-len(good) // int(limit)))  # ceil(n / limit)
+    if key is not None:
+        key = np.asarray(key).ravel()
+        if key.shape != good.shape:
+            raise ValueError(
+                f"thin_matches: key must hold one number per match ({good.size}), got shape "
+                f"{key.shape}; pass e.g. the matches' query keypoint indices"
+            )
+        return Thinned(key.astype(np.int64) % every == 0, every)
     rank = np.where(good, np.cumsum(good), np.cumsum(~good)) - 1  # 0, 1, 2 ... within each kind
     return Thinned(rank % every == 0, every)
 

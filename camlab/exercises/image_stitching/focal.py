@@ -271,9 +271,17 @@ def _no_rotation_hint(H, shape, g: float, which: str, keys) -> str:
     f2 = {k: f2[k] for k in keys}
     listed = ", ".join(f"{k} {v:.3g}" for k, v in f2.items())
     start = (
-        f"{which}: this H is not a rotation (a shift over a flat map with a little shear and perspective): every "
-        f"formula gives f^2 <= 0 ({listed} px^2), so no focal fits: return NaN (float('nan')), not {g:.6g}. "
+        f"{which}: this H is not a rotation (a shift over a flat map with a little shear and perspective): every formula on H "
+        f"gives f^2 <= 0 ({listed} px^2), so no focal fits: return NaN (float('nan')), not {g:.6g}. "
     )
+    inverse = _focal_formulas(np.linalg.inv(np.asarray(H, float)), shape)
+    if np.isfinite(g) and any(np.isclose(g, v, rtol=1e-6) for v in inverse.values()):
+        return start + (
+            f"{g:.6g} is what the formulas give on H^-1 (its columns give f_from, its rows f_to). On a rotation "
+            "that route agrees with the formulas on H itself (it passes the seven turns), but this H is no "
+            "rotation, and there the four conditions on H and those on H^-1 disagree: H^-1 gives some f^2 > 0 "
+            "while H gives none. Use the formulas on the centred H itself, as the prompt says, and return NaN."
+        )
     absolute = _focal_formulas(H, shape, absolute=True)
     if np.isfinite(g) and any(np.isclose(g, absolute[k], rtol=1e-6) for k in keys):
         return start + (
@@ -754,6 +762,10 @@ register_exercise(
             (
                 lambda H, shape: focal_from_rotation_homography(np.linalg.inv(H), shape),
                 "used H^-1",
+            ),
+            (  # the H^-1 route: right on every turn, not on the last input (no rotation)
+                lambda H, shape: focal_from_rotation_homography(np.linalg.inv(H), shape)[::-1],
+                "formulas give on H^-1",
             ),
             (_one_focal, "you returned one number"),
             (lambda H, shape: (_one_focal(H, shape),) * 2, "same number twice"),

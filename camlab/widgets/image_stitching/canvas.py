@@ -89,6 +89,10 @@ def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
     return np.asarray(points, float) * s + [ox, oy]
 
 
+CANVAS_PAD = 4.0
+"""Axes units of black beyond the box of a panorama's axes: its border outlines stay whole."""
+
+
 def _outline_figure(box, lw: float, name: str, animate_legend: bool):
     """The figure of a panorama with each image's outline.
 
@@ -126,7 +130,15 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
     )
     if animate_legend:  # it goes with the outlines when they are switched off
         view.animate(legend)
-    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
+    # a few units of black round the box: an outline on the canvas border is drawn whole, and the
+    # bands beside a fitted canvas read as empty canvas, not as part of the page
+    pad = CANVAS_PAD
+    ax.set(
+        xlim=(-0.5 - pad, box[1] - 0.5 + pad),
+        ylim=(box[0] - 0.5 + pad, -0.5 - pad),
+        aspect="equal",
+        facecolor="black",
+    )
     ax.set_xticks([])
     ax.set_yticks([])
     title = view.animate(ax.set_title(" ", fontsize=9))
@@ -399,7 +411,7 @@ def blending_seams() -> Demo:
         title.set_text(
             f"{_blend_name(v['method'], int(v['levels']))}: exposures 30% apart, "
             + (f"gains {gains[0]:.3f}, {gains[1]:.3f}" if v["gains"] else "before gains")
-            + (f"; view 2 {offset} px off" if offset else "")
+            + (f"; view 2 moved {offset} px" if offset else "")
         )
         imz.set_data(rgba[v0 : v0 + z, u0 : u0 + z])
         marks = seam_marks["overwrite" if v["method"] == "overwrite" else "middle"]
@@ -544,8 +556,9 @@ def _gallery() -> dict:
 
 
 def _place(rgba: np.ndarray) -> np.ndarray:
-    """An RGBA image that fits in :data:`BOX`, placed in the middle of a white BOX."""
-    out = np.full((*BOX, 4), 255, np.uint8)
+    """An RGBA image that fits in :data:`BOX`, placed in the middle of a black BOX (the empty canvas's colour)."""
+    out = np.zeros((*BOX, 4), np.uint8)
+    out[..., 3] = 255
     x0, y0 = (BOX[1] - rgba.shape[1]) // 2, (BOX[0] - rgba.shape[0]) // 2
     out[y0 : y0 + rgba.shape[0], x0 : x0 + rgba.shape[1]] = rgba
     return out

@@ -88,9 +88,9 @@ def feature_matches() -> Demo:
         m = ft.filter_matches(knn[(i, j)], v["ratio"], v["mutual"])
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         seg = match_segments(m.src, m.dst, art["offset"])
-        # a fixed 1 in MATCH_STRIDE of each kind (the photos stay visible): the drawn share of
-        # right matches is the true one, and fewer matches always draw fewer lines
-        show, every = thin_matches(good, every=MATCH_STRIDE)
+        # a fixed 1 in MATCH_STRIDE (the photos stay visible), chosen by the query keypoint's
+        # index: a match keeps its line at every setting, so a filter removes only its own lines
+        show, every = thin_matches(good, every=MATCH_STRIDE, key=m.idx1)
         for kp in kps:
             kp.set_visible(bool(v["keypoints"]))
         art["good"].set_segments(seg[good & show])
@@ -140,8 +140,8 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
     """The image panel of :func:`ransac_registration`.
 
     Image ``j`` of the set ``s``, the frame of image ``i`` under the true H, the legend below;
-    returns the moving inliers, outliers and estimated frame (registered with ``view`` in that
-    order).
+    returns the moving inliers, wrong inliers, outliers and estimated frame (registered with
+    ``view`` in that order).
     """
     ax.imshow(s.images[j], interpolation="nearest")
     ax.set_xticks([])
@@ -150,6 +150,19 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
     inl = view.animate(
         ax.plot(
             [], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo()
+        )[0]
+    )
+    # inliers the truth rejects (> 2 px off the true H): an orange ring round their green dot
+    bad_inl = view.animate(
+        ax.plot(
+            [],
+            [],
+            "o",
+            mfc="none",
+            mec=palette.ORANGE,
+            mew=1.2,
+            ms=7,
+            label="inlier, but > 2 px off the true H",
         )[0]
     )
     outl = view.animate(
@@ -198,9 +211,9 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
         ylim=(max(h - 0.5, true_frame[:, 1].max() + 20), min(-0.5, true_frame[:, 1].min() - 20)),
     )
     ax.legend(
-        loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=4, fontsize=7, facecolor="0.75"
+        loc="upper center", bbox_to_anchor=(0.5, -0.02), ncols=3, fontsize=7, facecolor="0.75"
     )
-    return inl, outl, est_box
+    return inl, bad_inl, outl, est_box
 
 
 def _residual_axes(view: FigureView, ax_e) -> tuple:
@@ -212,7 +225,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="matches per bin, scaled: tallest = 1\n(counts in the text above)\ngreen: inliers, red: rejected",
+        ylabel="matches per bin, scaled: tallest\ninner bin = 1 (counts in the text)\ngreen: inliers, red: rejected",
         xscale="log",
         xlim=(
             0.013,
@@ -226,7 +239,7 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
         ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8)
     )
     ax_e.set_title(
-        "residuals under H (dashed: threshold)\nhatched end bars: < 0.02 px and > 300 px",
+        "residuals under H (dashed: threshold)\nhatched: < 0.02 px, > 300 px (cut at 1.2)",
         fontsize=9,
     )
     bins, zeros = _RESIDUAL_BINS, np.zeros(len(_RESIDUAL_BINS) - 1)
@@ -252,11 +265,13 @@ def _set_residual_bars(bars: tuple, res: np.ndarray, inliers: np.ndarray) -> int
     clipped = np.clip(res, 1.001 * _RESIDUAL_BINS[0], 449)
     n_in, _ = np.histogram(clipped[inliers], _RESIDUAL_BINS)
     n_out, _ = np.histogram(clipped[~inliers], _RESIDUAL_BINS)
-    top = max((n_in + n_out).max(), 1)
+    # scaled to the tallest inner bin: an end bin that holds more is cut at 1.2 (its hatching says so)
+    top = max((n_in + n_out)[1:-1].max(), 1)
     for b_in, b_out, a, o in zip(*bars, n_in, n_out, strict=True):
-        b_in.set_height(a / top)
-        b_out.set_y(a / top)
-        b_out.set_height(o / top)
+        a, o = min(a / top, 1.2), min(o / top, 1.2 - min(a / top, 1.2))
+        b_in.set_height(a)
+        b_out.set_y(a)
+        b_out.set_height(o)
     return int(n_in.sum())
 
 
@@ -267,10 +282,16 @@ def _registration_figure(view: FigureView, s, imgs, i: int, j: int) -> SimpleNam
     its moving artists by name.
     """
     ax, ax_e = view.fig.subplots(1, 2, width_ratios=[1.5, 1])
-    inl, outl, est_box = _registration_image(view, ax, s, imgs, i, j)
+    inl, bad_inl, outl, est_box = _registration_image(view, ax, s, imgs, i, j)
     verdict, bars, thr_line = _residual_axes(view, ax_e)
     return SimpleNamespace(
-        inl=inl, outl=outl, est_box=est_box, verdict=verdict, bars=bars, thr_line=thr_line
+        inl=inl,
+        bad_inl=bad_inl,
+        outl=outl,
+        est_box=est_box,
+        verdict=verdict,
+        bars=bars,
+        thr_line=thr_line,
     )
 
 
@@ -355,6 +376,7 @@ def ransac_registration() -> Demo:
         art.thr_line.set_xdata([v["threshold"], v["threshold"]])
         if r.H is None:
             art.inl.set_data([], [])
+            art.bad_inl.set_data([], [])
             art.outl.set_data(m.dst[:, 0], m.dst[:, 1])
             art.est_box.set_data([], [])
             _set_residual_bars(art.bars, np.zeros(0), np.zeros(0, bool))  # no H, no residuals
@@ -373,6 +395,7 @@ def ransac_registration() -> Demo:
         )
         good = pe.correct_matches(s, i, j, m.src, m.dst)
         wrong = int((r.inliers & ~good).sum())
+        art.bad_inl.set_data(m.dst[r.inliers & ~good, 0], m.dst[r.inliers & ~good, 1])
         state.update(
             inliers=int(r.inliers.sum()),
             corner_error=err,
