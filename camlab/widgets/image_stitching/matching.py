@@ -158,11 +158,12 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
             [],
             [],
             "o",
+            color=palette.ORANGE,
             mfc="none",
-            mec=palette.ORANGE,
             mew=1.2,
             ms=7,
             label="inlier, but > 2 px off the true H",
+            path_effects=palette.halo(),
         )[0]
     )
     outl = view.animate(
