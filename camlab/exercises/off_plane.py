@@ -142,7 +142,7 @@ _MISTAKES = (
         "first order",
         lambda c: c.first_order,
         "you inverted the first-order law, L_read / L = 1 + h / Z: the law is exact, Z / (Z - h) = "
-        "L_read / L, so h = Z (1 - L / L_read) (the two differ by 20 % at a reading 23 % long).",
+        "L_read / L, so h = Z (1 - L / L_read) (the first-order h is 23 % too large at a reading 23 % long).",
     ),
     Mistake(
         "t_z for Z",
