@@ -434,3 +434,26 @@ def shape_unpack_hint(exc: Exception, name: str) -> str:
             f"Take the first two, `h, w = {name}[:2]`."
         )
     return ""
+
+
+def diagonal_only_hint(got: Any, expected: Any, carries: str) -> str | None:
+    """The cause when a covariance comes back as its diagonal: n one-sigmas, or n variances.
+
+    ``carries`` ends the variances' hint: what the off-diagonal terms carry (the correlations
+    of ...). None when ``got`` is not n numbers.
+    """
+    exp = np.asarray(expected, dtype=float)
+    n = exp.shape[0]
+    g = np.asarray(got) if got is not None else None
+    if g is None or g.shape != (n,):
+        return None
+    if g.dtype.kind in "fiu" and np.allclose(g, np.sqrt(np.abs(np.diag(exp))), rtol=1e-4, atol=0):
+        return (
+            f"you returned {n} one-sigmas (the square roots of the diagonal): return the whole "
+            f"({n}, {n}) covariance, variances on its diagonal, whose off-diagonal terms carry the "
+            "correlations."
+        )
+    return (
+        f"you returned {n} numbers, the variances alone (the diagonal): return the whole ({n}, {n}) "
+        f"covariance, whose off-diagonal terms carry {carries}."
+    )

@@ -18,7 +18,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ._answers import same_array, shape_problem
+from ._answers import diagonal_only_hint, same_array, shape_problem
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 
 
@@ -293,18 +293,9 @@ def _diagnosis(args, got, expected) -> str:
             "(of Sigma_A, Sigma_B or the result) breaks the negative covariances. Sigma_X is a sum of "
             "J Sigma J^T terms, with no square root anywhere."
         )
-    if g is not None and g.shape == (3,):
-        d = np.diag(np.asarray(expected, dtype=float))
-        if g.dtype.kind in "fiu" and np.allclose(g, np.sqrt(np.abs(d)), rtol=1e-4, atol=0):
-            return (
-                "you returned 3 one-sigmas (the square roots of the diagonal): return the whole "
-                "(3, 3) covariance, variances on its diagonal, whose off-diagonal terms carry the "
-                "correlations."
-            )
-        return (
-            "you returned 3 numbers, the variances alone (the diagonal): return the whole (3, 3) "
-            "covariance, whose off-diagonal terms carry the correlations (the ellipsoid's tilt)."
-        )
+    hint = diagonal_only_hint(got, expected, "the correlations (the ellipsoid's tilt)")
+    if hint:
+        return hint
     if (
         g is not None
         and g.shape == (3, 3)

@@ -15,7 +15,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from ._answers import same_array, shape_problem
+from ._answers import diagonal_only_hint, same_array, shape_problem
 from ._core import Exercise, Mistake, first_mistake, mistake_variant, register_exercise
 
 
@@ -203,18 +203,9 @@ def _diagnosis(args, got, expected) -> str:
             f"you returned a ({len(r)}, {len(r)}) matrix: that is J J^T (or J Sigma J^T), one entry per "
             "residual pair; the pose's covariance is 6 x 6, sigma^2 (J^T J)^-1 with J.T @ J."
         )
-    if g is not None and g.shape == (6,):
-        d = np.diag(np.asarray(expected, dtype=float))
-        if g.dtype.kind in "fiu" and np.allclose(g, np.sqrt(np.abs(d)), rtol=1e-4, atol=0):
-            return (
-                "you returned 6 one-sigmas (the square roots of the diagonal): return the whole "
-                "(6, 6) covariance, variances on its diagonal, whose off-diagonal terms carry the "
-                "correlations."
-            )
-        return (
-            "you returned 6 numbers, the variances alone (the diagonal): return the whole (6, 6) "
-            "covariance, whose off-diagonal terms carry the correlations between the pose's parameters."
-        )
+    hint = diagonal_only_hint(got, expected, "the correlations between the pose's parameters")
+    if hint:
+        return hint
     hint = None
     if g is not None and g.shape == np.shape(expected) and g.dtype.kind in "fiu":
         hint = first_mistake(  # before shape_problem, whose NaN hint would hide a square root
