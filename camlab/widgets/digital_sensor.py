@@ -170,7 +170,7 @@ def pixel_pitch():
             f"f_x = f / s_x = {K[0, 0]:.0f} px\nc_x = {K[0, 2]:.1f}, c_y = {K[1, 2]:.1f}\n"
             f"sensor {SIZE[0] * pitch * 1e3:.2f} x {SIZE[1] * pitch * 1e3:.2f} mm\n"
             f"horizontal FOV {fov:.1f}°\n"
-            f"  left {left:.1f}°, right {right:.1f}° of the axis"
+            f"  left {left:.2f}°, right {right:.2f}° of the axis"
         )
 
     return build_demo(
