@@ -127,7 +127,8 @@ def selected_demos(session) -> list[str]:
     """
     names = set()
     for item in session.items:
-        if item.module.__name__ != __name__ or "lab_page" not in item.fixturenames:
+        module = getattr(item, "module", None)  # doctest and nbval items have none
+        if module is None or module.__name__ != __name__ or "lab_page" not in item.fixturenames:
             continue
         callspec = getattr(item, "callspec", None)
         if callspec:
