@@ -115,7 +115,12 @@ def test_mirror_draws_the_far_side_of_the_horizon_as_cv2_does():
     out = warp.warp_perspective(src, Hh, (60, 40), fill=0, mirror=True)
     ref = cv2.warpPerspective(src, Hh, (40, 60))
     assert out[:18].max() > 0  # the mirrored part, which mirror=False leaves at fill
-    assert np.abs(out.astype(int) - ref).max() <= 1
+    # every row but the horizon's own (w = 0 exactly at row 20: OpenCV 4.12 draws a clamped
+    # sample there, 5.0 leaves it at fill, as camlab does)
+    Hi = np.linalg.inv(Hh)
+    on_horizon = np.isclose(Hi[2, 1] * np.arange(60) + Hi[2, 2], 0, atol=1e-12)
+    assert on_horizon.sum() == 1
+    assert np.abs(out.astype(int) - ref)[~on_horizon].max() <= 2  # rounding: 1 (5.0), 2 (4.12)
     assert not warp.warp_perspective(src, Hh, (60, 40), fill=0)[:18].any()
 
 
