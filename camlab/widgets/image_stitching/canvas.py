@@ -319,7 +319,8 @@ def _blend_zoom(wi, seam: np.ndarray) -> tuple[int, int, int]:
     sweep={
         "method": list(st.BLENDS),
         "gains": [False, True],
-        "levels": [1, 5],
+        # no "levels" sweep: the slider is disabled unless the method is multiband, so from the
+        # default (overwrite) it would change nothing; the lesson renders method=multiband,levels=1
         "offset": [pe.OFFSETS[0], pe.OFFSETS[-1]],
     },
 )
@@ -507,8 +508,8 @@ def full_panorama() -> Demo:
         )
         readout.value = monospace(
             f"{v['projection']}: {ww} x {hh} px, reference {r.reference}\n"
-            "stitch's own matching (photos as floats, FLANN): a few matches more or fewer\n"
-            "than section 4's table (photos as loaded, brute force)\n"
+            "stitch's own matching (FLANN): a few matches more or fewer\n"
+            "than section 4's table (brute force)\n"
             f"{rows}"
         )
 
@@ -702,7 +703,8 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
     im = view.animate(
         ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest")
     )  # one-pixel edges stay crisp
-    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal")
+    # black round the fitted canvas, as the canvas' own empty pixels (no white slivers)
+    ax.set(xlim=(-0.5, box[1] - 0.5), ylim=(box[0] - 0.5, -0.5), aspect="equal", facecolor="black")
     ax.set_xticks([])
     ax.set_yticks([])
     title = view.animate(ax.set_title(" ", fontsize=9))
@@ -750,8 +752,13 @@ def _parallax_texts(
     )
     readout = monospace(
         f"camera moved {100 * b:.0f} cm\nmatches: {n}\n"
-        f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\noutliers: {n - k} (parallax shows here)\n"
-        f"inlier RMS: {rms:.2f} px\n"
+        f"inliers: {k} ({100 * k / max(n, 1):.0f}%)\noutliers: {n - k} "
+        + (
+            "(no parallax at 0 cm: wrong matches)\n"
+            if b == 0
+            else "(wrong matches and parallax:\n  near objects off the wall's H)\n"
+        )
+        + f"inlier RMS: {rms:.2f} px\n"
         f"mean |view 0 - view 1| on the overlap:\n  {diff:.1f} grey levels\n"
         + (
             "edges of the two warped views (not of the blend):\n"

@@ -10,6 +10,8 @@ from types import SimpleNamespace
 
 import ipywidgets as W
 import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.ticker import NullFormatter
 
 from ... import features as ft
 from ... import homography as hg
@@ -41,10 +43,12 @@ def feature_matches() -> Demo:
 
     Views 0 and 1 of the half-size set with their SIFT keypoints; each match is judged by
     the true homography (green within 2 px, red otherwise:
-    :func:`camlab.fixtures.panorama_examples.correct_matches`). Every match is counted,
-    only 1 in :data:`MATCH_STRIDE` (4) of each kind is drawn, at every setting
-    (:func:`camlab.plotting.stitching.thin_matches`), so the picture keeps the true share of
-    right matches and the number of lines drawn falls when matches fall.
+    :func:`camlab.fixtures.panorama_examples.correct_matches`; green drawn over red). Every
+    match is counted, only those whose keypoint index in view 0 is divisible by
+    :data:`MATCH_STRIDE` (4) are drawn, at every setting
+    (:func:`camlab.plotting.stitching.thin_matches`), so the picture keeps about the true share
+    of right matches and the number of lines drawn falls when matches fall. With the mutual
+    check on, every match it drops is drawn in grey under the others.
 
     Returns
     -------
@@ -54,7 +58,8 @@ def feature_matches() -> Demo:
         neighbours) and ``keypoints`` (draw the SIFT keypoints, off at first), the figure (both views side by side with their keypoints and the
         matches) and ``state`` (``matches`` the matches kept, ``wrong`` those the truth
         rejects, ``precision`` the share that is right, NaN without matches, ``drawn_right``
-        and ``drawn_wrong`` the green and red lines drawn, ``keypoints_drawn`` the circles shown).
+        and ``drawn_wrong`` the green and red lines drawn, ``drawn_dropped`` the grey lines of
+        the matches the mutual check drops, ``keypoints_drawn`` the circles shown).
 
     References
     ----------
@@ -66,9 +71,15 @@ def feature_matches() -> Demo:
     view = FigureView(figsize=(9, 3.4))
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
-    # the images stay, only the lines (and the keypoints' visibility) change; red over green
-    # (draw_matches' z-order), in a redraw and a live frame
-    view.animate(art["good"], art["bad"])
+    # the images stay, only the lines (and the keypoints' visibility) change. Green over red here
+    # (at r near 1 the many red lines would bury the few green ones), and under both, in grey, the
+    # matches the mutual check drops, so the toggle shows what it removes
+    art["good"].set_zorder(2.2)
+    dropped = LineCollection(
+        [], colors="0.85", linewidths=1.6, path_effects=palette.halo(1.0, "black"), zorder=1.9
+    )
+    ax.add_collection(dropped)
+    view.animate(dropped, art["bad"], art["good"])
     kps = [
         draw_keypoints(
             ax,
@@ -95,11 +106,19 @@ def feature_matches() -> Demo:
             kp.set_visible(bool(v["keypoints"]))
         art["good"].set_segments(seg[good & show])
         art["bad"].set_segments(seg[~good & show])
+        # the ratio test's matches that the mutual check removed: every one drawn (a handful at
+        # r = 0.75, none of them among the 1 in 4), so the toggle shows what it does
+        m_all = ft.filter_matches(knn[(i, j)], v["ratio"]) if v["mutual"] else m
+        gone = ~np.isin(m_all.idx1, m.idx1)
+        dropped.set_segments(match_segments(m_all.src, m_all.dst, art["offset"])[gone])
         n, nbad = len(good), int((~good).sum())
-        thinned = f"1 line in {every} drawn per colour; wrong ones dashed"
+        thinned = (
+            f"1 match in {every} drawn (keypoint index divisible by {every}); wrong ones dashed"
+        )
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
             f"of the true H), {nbad} wrong (red)\n{thinned}"
+            + (f"; grey: the {len(m_all.src) - n} it dropped (all drawn)" if v["mutual"] else "")
             + ("; yellow circles: SIFT keypoints, radius ~ their scale" if v["keypoints"] else "")
         )
         state.update(
@@ -109,6 +128,7 @@ def feature_matches() -> Demo:
             drawn_right=int((good & show).sum()),
             drawn_wrong=int((~good & show).sum()),
             keypoints_drawn=sum(len(f.points) for f in feats[: j + 1]) if v["keypoints"] else 0,
+            drawn_dropped=int(gone.sum()),
         )
         readout.value = monospace(
             f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
@@ -152,18 +172,19 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
             [], [], ".", color=palette.GREEN, ms=4, label="inliers", path_effects=palette.halo()
         )[0]
     )
-    # inliers the truth rejects (> 2 px off the true H): an orange ring round their green dot
+    # inliers the truth rejects (> 2 px off the true H): a black ring (white edge) round their
+    # green dot; black, not a view colour (orange is view 1's)
     bad_inl = view.animate(
         ax.plot(
             [],
             [],
             "o",
-            color=palette.ORANGE,
+            color="black",
             mfc="none",
-            mew=1.2,
-            ms=7,
+            mew=1.4,
+            ms=8,
             label="inlier, but > 2 px off the true H",
-            path_effects=palette.halo(),
+            path_effects=palette.halo(1.5, "white"),
         )[0]
     )
     outl = view.animate(
@@ -221,55 +242,55 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     """The histogram panel of :func:`ransac_registration`.
 
     The verdict text, two stacked bars per bin of :data:`_RESIDUAL_BINS` (the inliers green at
-    the bottom, the outliers red on top, as in the image panel; the end bars hatched) and the threshold line,
+    the bottom, the outliers red on top, as in the image panel; the end bars, which also hold
+    everything beyond the axis, hatched) on a log count axis, and the threshold line,
     registered with ``view`` in that order and returned.
     """
     ax_e.set(
         xlabel="symmetric transfer error (px, log)",
-        ylabel="matches per bin, scaled: tallest\ninner bin = 1 (counts in the text)\ngreen: inliers, red: rejected",
+        ylabel="matches per bin (log)\ngreen inliers, red rejected",
         xscale="log",
-        xlim=(
-            0.013,
-            640,
-        ),  # the < 0.02 px bar and the > 300 px bar whole, off the spines
-        ylim=(0, 1.55),
-        yticks=[0, 0.5, 1],
+        yscale="log",
+        xlim=(0.013, 640),  # the < 0.02 px bar and the > 300 px bar whole, off the spines
+        # fixed limits (no stale axis in a live frame): the tallest bin at any setting (122 at
+        # r = 1) stays below the verdict, which takes the top third
+        ylim=(0.5, 3000),
+        yticks=[1, 10, 100],
+        yticklabels=["1", "10", "100"],
     )
+    ax_e.yaxis.set_minor_formatter(NullFormatter())  # the minor ticks unlabelled
     # the verdict in the figure (the static picture has no side panel), above the tallest bar
     verdict = view.animate(
         ax_e.text(0.5, 0.97, "", transform=ax_e.transAxes, ha="center", va="top", fontsize=8)
     )
     ax_e.set_title(
-        "residuals under H (dashed: threshold)\nhatched: < 0.02 px, > 300 px (cut at 1.2)",
+        "residuals under H (dashed: threshold)\nhatched: all < 0.02 px, all > 300 px",
         fontsize=9,
     )
     bins, zeros = _RESIDUAL_BINS, np.zeros(len(_RESIDUAL_BINS) - 1)
     # each bin stacked by what RANSAC decided: a bin that straddles the threshold shows both kinds
     inl_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color=palette.GREEN)
     out_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color=palette.RED)
-    for end in (out_bars[0], out_bars[-1]):  # they also hold everything beyond the axis: marked
-        end.set(hatch="////", edgecolor="0.25")
-    for end in (inl_bars[0], inl_bars[-1]):
-        end.set(hatch="////", edgecolor="0.25")
+    for end in (out_bars[0], out_bars[-1], inl_bars[0], inl_bars[-1]):
+        end.set(hatch="////", edgecolor="0.25")  # they also hold everything beyond the axis
     view.animate(*inl_bars, *out_bars)
     # below the verdict (which sits in the top third, over no bar): the line never crosses its text
-    thr_line = view.animate(ax_e.axvline(3, ymax=1.08 / 1.55, color="black", ls="--", lw=1.5))
+    thr_line = view.animate(ax_e.axvline(3, ymax=0.68, color="black", ls="--", lw=1.5))
     return verdict, (inl_bars, out_bars), thr_line
 
 
 def _set_residual_bars(bars: tuple, res: np.ndarray, inliers: np.ndarray) -> int:
     """Stack each bin of :data:`_RESIDUAL_BINS`: the ``inliers`` of residuals ``res`` green, the rest red on top.
 
-    Residuals below 0.02 px or above 300 px are counted in the end bins. Returns the number of matches the
-    green bars hold (every inlier, so the picture agrees with the verdict's count).
+    Heights are counts of matches; the red bar starts where the green one ends, so a bar's top
+    is the bin's total. Residuals below 0.02 px or above 300 px are counted in the end bins.
+    Returns the number of matches the green bars hold (every inlier, so the picture agrees with
+    the verdict's count).
     """
     clipped = np.clip(res, 1.001 * _RESIDUAL_BINS[0], 449)
     n_in, _ = np.histogram(clipped[inliers], _RESIDUAL_BINS)
     n_out, _ = np.histogram(clipped[~inliers], _RESIDUAL_BINS)
-    # scaled to the tallest inner bin: an end bin that holds more is cut at 1.2 (its hatching says so)
-    top = max((n_in + n_out)[1:-1].max(), 1)
     for b_in, b_out, a, o in zip(*bars, n_in, n_out, strict=True):
-        a, o = min(a / top, 1.2), min(o / top, 1.2 - min(a / top, 1.2))
         b_in.set_height(a)
         b_out.set_y(a)
         b_out.set_height(o)
