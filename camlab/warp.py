@@ -374,6 +374,8 @@ def canvas_box(homographies: Sequence[ArrayLike], shapes: Sequence[Sequence[int]
             np.array([[0, 0, 1], [w - 1, 0, 1], [w - 1, h - 1, 1], [0, h - 1, 1]], dtype=float)
             @ Hm.T
         )
+        if np.all(c[:, 2] < 0):  # H and -H are one homography (a DLT's SVD returns either sign)
+            c = -c
         if np.any(c[:, 2] <= 1e-12 * np.abs(c).max()):
             raise DegenerateError(
                 f"homographies[{i}]: a corner of image {i} maps to or beyond infinity (the image "

@@ -191,6 +191,13 @@ def test_canvas_box_agrees_with_canvas_bounds(moves):
     assert (w, h) == tuple((box[1] - box[0] + 1).astype(int))
 
 
+def test_canvas_box_takes_a_homography_of_either_sign():
+    # H and -H are one homography (a DLT's SVD returns either): w < 0 at every corner is no horizon
+    H = np.array([[0.9, 0.25, 410.3], [-0.15, 1.1, 60.6], [0.0004, -0.0006, 1.0]])
+    assert np.array_equal(canvas_box([-0.01 * H], [(240, 320)]), canvas_box([H], [(240, 320)]))
+    assert canvas_box([-0.01 * H], [(240, 320)])[0, 0] == 410  # not mirrored through the origin
+
+
 def test_canvas_box_bad_input():
     with pytest.raises(
         CamlabInputError,

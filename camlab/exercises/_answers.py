@@ -246,11 +246,21 @@ def worst_mismatch(got: Any, expected: Any, tolerance: Tolerance | None = None) 
     shown_got, shown_expected = f"{g[index] + 0.0:.6g}", f"{e[index] + 0.0:.6g}"  # + 0.0: no "-0"
     if shown_got == shown_expected:
         shown_got, shown_expected = repr(float(g[index])), repr(float(e[index]))
+    if _entry_is_none(got, index):  # float(None) is NaN: "got nan, expected nan" would confuse
+        shown_got = "None"
     at = f"entry {int(index[0])}" if e.ndim == 1 else f"{where} {tuple(int(i) for i in index)}"
     return (
         f"  worst    {at}: got {shown_got}, expected {shown_expected}"
         f" ({wrong} of {e.size} entries differ by more than {tol})\n"
     )
+
+
+def _entry_is_none(got: Any, index: tuple) -> bool:
+    """Whether the entry ``index`` of ``got`` (a nested sequence or an array) is None."""
+    try:
+        return np.asarray(got, dtype=object)[index] is None
+    except (TypeError, ValueError, IndexError):
+        return False
 
 
 SCALE_FREE_RTOL = 1e-6

@@ -71,6 +71,12 @@ def _canvas_cases():
         # a roll, then a general homography: each of the four corners alone decides a side of the box
         ([rotation_homography(K, rotation_z(np.radians(25)) @ yaw(15))], [(240, 320)]),
         ([_projective()], [(240, 320, 3)]),
+        # the same turn with H scaled by -0.01: a homography's overall sign is arbitrary (a DLT's
+        # SVD returns either), so w < 0 at every corner and only a division by w itself is right
+        (
+            [-0.01 * shift(0.3, 0.4), -0.01 * rotation_homography(K, yaw(20))],
+            [(240, 320), (240, 320)],
+        ),
     ]
 
 
@@ -89,13 +95,14 @@ def _corners(
     swap: bool = False,
     one_shape: bool = False,
     keep: tuple[int, ...] = (0, 1, 2, 3),
+    abs_w: bool = False,
 ) -> np.ndarray:
     """Every image's mapped corners, right or with one typical slip.
 
     ``transposed`` maps rows by ``c @ H`` (H^T), ``swap`` reads the shape as (w, h), ``one_shape``
     uses shapes[0] for every image, ``first`` and ``last`` put the corners at u = first and u = w -
     last (right: 0 and w - 1; pixel edges: -1/2 and w - 1/2; 1-based: 1 and w), ``keep`` maps only
-    those corners (TL, TR, BR, BL = 0, 1, 2, 3).
+    those corners (TL, TR, BR, BL = 0, 1, 2, 3), ``abs_w`` divides by |w| instead of w.
     """
     pts = []
     for H, s in zip(Hs, shapes, strict=True):
@@ -111,7 +118,8 @@ def _corners(
             ],
             float,
         )[list(keep)] @ (H if transposed else H.T)
-        pts.append(c[:, :2] / c[:, 2:] if divide else c[:, :2])
+        w3 = np.abs(c[:, 2:]) if abs_w else c[:, 2:]
+        pts.append(c[:, :2] / w3 if divide else c[:, :2])
     return np.vstack(pts)
 
 
@@ -203,6 +211,13 @@ _CANVAS_SLIPS = (
         "divide",
         lambda s: _box(_corners(s.Hs, s.shapes, divide=False)),
         "you forgot to divide the mapped corners by their third coordinate w (homogeneous to pixels).",
+    ),
+    Mistake(
+        "divided by |w|",
+        lambda s: _box(_corners(s.Hs, s.shapes, abs_w=True)),
+        "divide by w itself, not |w|: a homography's overall sign is arbitrary (H and -H are the same "
+        "homography; a DLT's SVD returns either), so w can be negative at every corner, and x / |w| then "
+        "mirrors the points through the origin.",
     ),
     Mistake(
         "w - 1",
@@ -366,6 +381,7 @@ register_exercise(
             (_canvas_variant("last image only"), "instead of adding"),
             (_canvas_variant("shapes[0]"), "first image's shape"),
             (_canvas_variant("divide"), "divide"),
+            (_canvas_variant("divided by |w|"), "not |w|"),
             (_canvas_variant("w - 1"), "w - 1"),
             (_canvas_variant("pixel edges"), "pixel edges"),
             (_canvas_variant("1-based"), "counted pixels from 1"),

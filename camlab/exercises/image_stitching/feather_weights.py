@@ -36,16 +36,36 @@ def _feather_cases():
     return [((3, 4),), ((5, 5),), ((6, 9),), ((1, 3),), ((4, 7, 3),)]
 
 
+_FEATHER_GENERIC = (
+    "w(u, v) = min(u + 1/2, W - 1/2 - u, v + 1/2, H - 1/2 - v): the distance to the nearest border."
+)
+
+
 def _feather_diagnosis(args, got, expected) -> str:
     g = np.asarray(got, dtype=float)
     if g.shape != expected.shape:
         return _feather_shape_hint(args[0], g.shape, expected.shape)
-    if np.asarray(got).dtype.kind in "iub":
-        return (
-            f"your array has an integer dtype ({np.asarray(got).dtype}), so the half-pixel distances (u + 1/2, ...) "
-            "were cut to whole numbers when stored: build it as floats (np.zeros((h, w)), or np.minimum of float "
-            "arrays), not np.zeros((h, w), int)."
-        )
+    dtype = np.asarray(got).dtype
+    if dtype.kind not in "iub":
+        return _feather_values_hint(g, expected)
+    cut = (
+        f"your array has an integer dtype ({dtype}), so the half-pixel distances (u + 1/2, ...) "
+        "were cut to whole numbers when stored: build it as floats (np.zeros((h, w)), or np.minimum of float "
+        "arrays), not np.zeros((h, w), int)."
+    )
+    # whole numbers that are themselves a named slip (u + 1, the 1-based distance, holds no half
+    # to cut): that slip first, the dtype second
+    cause = _feather_values_hint(g, expected)
+    if cause == _FEATHER_GENERIC or np.array_equal(g, np.trunc(expected)):  # the storing cut
+        return cut
+    return (
+        f"{cause} Then return floats: the right distances (u + 1/2, ...) are half-integers, which your "
+        f"integer dtype ({dtype}) cannot hold."
+    )
+
+
+def _feather_values_hint(g: np.ndarray, expected: np.ndarray) -> str:
+    """The cause of wrong weight values ``g`` (float, of the right shape) against ``expected``."""
     if g.max() > 0 and np.allclose(g, expected / expected.max()):
         return (
             "you normalised the weights to a maximum of 1; the prompt asks for the distance itself, in pixels "
@@ -103,7 +123,7 @@ def _feather_diagnosis(args, got, expected) -> str:
         return offsets
     if g.min() < -1e-9:
         return _negative_hint(g, expected.shape)
-    return "w(u, v) = min(u + 1/2, W - 1/2 - u, v + 1/2, H - 1/2 - v): the distance to the nearest border."
+    return _FEATHER_GENERIC
 
 
 def _term(side: str, c: float) -> str:
@@ -267,6 +287,10 @@ register_exercise(
                 "shape[-2:] is (w, 3)",
             ),
             (lambda shape: st.feather_weights(shape).astype(int), "integer dtype"),
+            (
+                lambda shape: (st.feather_weights(shape) + 0.5).astype(int),
+                "off by half a pixel: the border is at u = -1/2",
+            ),
             (
                 lambda shape: st.feather_weights(shape) / st.feather_weights(shape).max(),
                 "normalised",
