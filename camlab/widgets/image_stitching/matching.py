@@ -272,7 +272,9 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
     inl_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color=palette.GREEN)
     out_bars = ax_e.bar(bins[:-1], zeros, width=np.diff(bins), align="edge", color=palette.RED)
     for end in (out_bars[0], out_bars[-1], inl_bars[0], inl_bars[-1]):
-        end.set(hatch="////", edgecolor="0.25")  # they also hold everything beyond the axis
+        end.set(
+            hatch="///", edgecolor="white", linewidth=0
+        )  # they also hold everything beyond the axis
     view.animate(*inl_bars, *out_bars)
     # below the verdict (which sits in the top third, over no bar): the line never crosses its text
     thr_line = view.animate(ax_e.axvline(3, ymax=0.68, color="black", ls="--", lw=1.5))
