@@ -133,7 +133,9 @@ def feature_matches() -> Demo:
         readout.value = monospace(
             f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
-            + f"\nlines drawn: {int((good & show).sum())} green, {int((~good & show).sum())} red ({thinned})"
+            + f"\nlines drawn: {int((good & show).sum())} green, {int((~good & show).sum())} red:\n"
+            f"  1 match in {every} (keypoint index divisible by {every})"
+            + (f"\ndropped by the mutual check: {int(gone.sum())} (grey)" if v["mutual"] else "")
         )
 
     controls = {
