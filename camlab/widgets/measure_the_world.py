@@ -156,7 +156,7 @@ def _plan_view(ax) -> None:
         CENTRE[1], CENTRE[0], "+", color="0.4", ms=8, mew=1.5
     )  # where the optical axis meets it
     text = dict(fontsize=7, path_effects=palette.halo(2))
-    ax.text(-0.03, 0.1, "board", color="0.1", rotation=90, ha="center", va="center", **text)
+    ax.text(-0.045, 0.1, "board", color="0.1", rotation=90, ha="center", va="center", **text)
     ax.annotate(
         "along the slope",
         (0.0625, 0.24),
@@ -166,9 +166,9 @@ def _plan_view(ax) -> None:
         **text,
     )
     ax.annotate(
-        "across",
+        "across the slope",
         (0.165, 0.1),
-        xytext=(0.172, 0.1),
+        xytext=(0.178, 0.1),
         color=palette.BROWN,
         rotation=90,
         va="center",
@@ -424,6 +424,8 @@ RAY_MM_PER_PX = 0.332
 ALPHAS = np.linspace(3.0, 120.0, 118)
 RAY_HALF = (18.0, 30.0)
 """The ray panel's half-width and half-height, in units of e (one ray's sideways sigma)."""
+BAR_MM = (0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0)
+"""The ray panel's scale-bar lengths (mm): the longest that spans at most 5 e is drawn."""
 
 
 def _ray_figure() -> SimpleNamespace:
@@ -433,7 +435,7 @@ def _ray_figure() -> SimpleNamespace:
     # in units of e, one ray's sideways sigma: the picking slider changes only the mm scale bar
     ax.set(xlim=(-RAY_HALF[0], RAY_HALF[0]), ylim=(-RAY_HALF[1], RAY_HALF[1]), aspect="equal")
     ax.set_xlabel("across, in the rays' plane (units of e)", fontsize=8)
-    ax.set_ylabel("depth, along the bisector (units of e)", fontsize=8)
+    ax.set_ylabel("depth, along the bisector (units of e; cameras above)", fontsize=8)
     ax_law.set(xlim=(0, 124), ylim=(0.02, 20), yscale="log")  # room for the ring at 120 deg
     ax_law.set_xlabel("angle α between the rays (deg)", fontsize=8)
     ax_law.set_ylabel("one σ of the point (mm, log scale)", fontsize=8)
@@ -493,7 +495,8 @@ def ray_angle() -> Demo:
     -------
     Demo
         Controls ``alpha`` (the angle between the rays, degrees) and ``pick`` (picking sigma, px);
-        ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma) and ``in_frame``.
+        ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma), ``in_frame`` and the scale bar's
+        length ``bar_mm``.
     """
     fig = _ray_figure()
     readout = W.HTML()
@@ -512,12 +515,12 @@ def ray_angle() -> Demo:
             for s, band in zip((-1, 1), pair, strict=True):
                 band.set_data(*(np.outer([-60, 60], d) + s * n).T)
         fig.ellipse.set_data(k95 * across / e * np.cos(ring), k95 * depth / e * np.sin(ring))
-        x0, y0 = (
-            -RAY_HALF[0] + 1.5,
-            -RAY_HALF[1] + 2.0,
-        )  # the scale bar, bottom left: 1 mm in units of e
-        fig.bar.set_data([x0, x0 + 1 / e], [y0, y0])
+        # the scale bar, left of the corner where no ray passes: 0.2, 1 or 2 mm, whichever spans at most 5 e
+        bar_mm = max(b for b in BAR_MM if b / e <= 5.0)
+        x0, y0 = -RAY_HALF[0] + 1.5, -3.0
+        fig.bar.set_data([x0, x0 + bar_mm / e], [y0, y0])
         fig.bar_text.set_position((x0, y0 + 0.8))
+        fig.bar_text.set_text(f"{bar_mm:g} mm")
         c = RAY_MM_PER_PX * v["pick"]
         fig.law_depth.set_data(ALPHAS, c / np.sin(np.radians(ALPHAS) / 2))
         fig.law_across.set_data(ALPHAS, c / np.cos(np.radians(ALPHAS) / 2))
@@ -529,7 +532,7 @@ def ray_angle() -> Demo:
         ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px: e = {e:.3f} mm")
         ax_law.title.set_text(f"the two laws, c = {c:.3f} mm at {v['pick']:.2f} px picks")
         in_frame = bool(k95 * depth / e <= RAY_HALF[1] and k95 * across / e <= RAY_HALF[0])
-        state.update(depth_mm=depth, across_mm=across, in_frame=in_frame)
+        state.update(depth_mm=depth, across_mm=across, in_frame=in_frame, bar_mm=bar_mm)
         readout.value = monospace(
             f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (ellipse half-axis {k95 * depth:5.2f} mm)\n"
             f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (ellipse half-axis {k95 * across:5.2f} mm)\n"
