@@ -275,7 +275,7 @@ def _reach_cases():
 
 
 REACH_RTOL = 1e-6
-"""Exercise 6's relative tolerance (max_depth): 2.5 um on 2.5 m passes a bisection or float32 answer; the nearest
+"""Exercise 7's relative tolerance (max_depth): 2.5 um on 2.5 m passes a bisection or float32 answer; the nearest
 slip (sqrt(2) sigma_d) is 19 % off."""
 
 

@@ -141,39 +141,27 @@ def _side_view(ax) -> SimpleNamespace:
 
 
 def _plan_view(ax) -> None:
-    """The table from above, zoomed on the board: where the two edges lie beside it (static)."""
-    # seen from above (-z, where the camera is): board y to the right, board x up; right x up = -z
-    ax.set(xlim=(-0.09, 0.26), ylim=(-0.05, 0.31), aspect="equal")
-    ax.set_xlabel("board y (m); the camera tilts toward +y", fontsize=8)
-    ax.set_ylabel("board x (m)", fontsize=8)
+    """The table from above, zoomed on the board, drawn as the photo shows it: board x right, y down."""
+    # seen from above (-z, where the camera is), oriented like the photo: board x to the right, board y
+    # down (toward the near side, where you stand and toward which the camera tilts)
+    ax.set(xlim=(-0.06, 0.3), ylim=(0.24, -0.1), aspect="equal")
+    ax.set_xlabel("board x (m)", fontsize=8)
+    ax.set_ylabel("board y (m); camera tilts to +y", fontsize=8)
     ax.tick_params(labelsize=7)
     ax.grid(alpha=0.3)
-    ax.set_title("the table from above (zoom)", fontsize=9)
-    ax.plot(BOARD[:, 1], BOARD[:, 0], ".", ms=2, color="0.1")  # the 54 corners
-    ax.plot(*OBJECT[:, [1, 0]].T, "-", color=palette.PURPLE, lw=3, solid_capstyle="butt")
-    ax.plot(*OBJECT_ACROSS[:, [1, 0]].T, "-", color=palette.BROWN, lw=3, solid_capstyle="butt")
+    ax.set_title("the table from above (as in the photo)", fontsize=9)
+    ax.plot(BOARD[:, 0], BOARD[:, 1], ".", ms=2, color="0.1")  # the 54 corners
+    ax.plot(*OBJECT[:, :2].T, "-", color=palette.PURPLE, lw=3, solid_capstyle="butt")
+    ax.plot(*OBJECT_ACROSS[:, :2].T, "-", color=palette.BROWN, lw=3, solid_capstyle="butt")
     ax.plot(
-        CENTRE[1], CENTRE[0], "+", color="0.4", ms=8, mew=1.5
+        CENTRE[0], CENTRE[1], "+", color="0.4", ms=8, mew=1.5
     )  # where the optical axis meets it
     text = dict(fontsize=7, path_effects=palette.halo(2))
-    ax.text(-0.045, 0.1, "board", color="0.1", rotation=90, ha="center", va="center", **text)
-    ax.annotate(
-        "along the slope",
-        (0.0625, 0.24),
-        xytext=(-0.08, 0.275),
-        color=palette.PURPLE,
-        va="bottom",
-        **text,
+    ax.text(0.1, -0.045, "board", color="0.1", ha="center", va="bottom", **text)
+    ax.text(
+        0.255, 0.0625, "along the slope", color=palette.PURPLE, rotation=90, va="center", **text
     )
-    ax.annotate(
-        "across the slope",
-        (0.165, 0.1),
-        xytext=(0.178, 0.1),
-        color=palette.BROWN,
-        rotation=90,
-        va="center",
-        **text,
-    )
+    ax.text(0.1, 0.18, "across the slope", color=palette.BROWN, ha="center", va="top", **text)
 
 
 def _side_update(side: SimpleNamespace, g: SimpleNamespace) -> None:
