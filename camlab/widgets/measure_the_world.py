@@ -119,7 +119,24 @@ def length_sigma(
 SIDE_LIM = (
     (-0.25, 1.6),
     (-0.15, 1.6),
-)  # the side view's y and height limits, m: every setting fits
+)  # the side view's y and height limits at the farthest distance, m; nearer, they shrink with it
+
+
+def _side_limits(distance: float) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The side view's limits at ``distance`` (m): :data:`SIDE_LIM` scaled to fit the camera at every tilt.
+
+    Parameters
+    ----------
+    distance : float
+        From the camera to the board's centre, metres (0.4 to 1.5).
+
+    Returns
+    -------
+    tuple
+        ``((y_min, y_max), (height_min, height_max))``, metres, in the same proportions at every distance.
+    """
+    s = (distance + 0.1) / 1.6  # 1 at the slider's 1.5 m; the camera stays inside at 75 deg
+    return tuple((lo * s, hi * s) for lo, hi in SIDE_LIM)
 
 
 def _side_view(ax) -> SimpleNamespace:
@@ -133,7 +150,16 @@ def _side_view(ax) -> SimpleNamespace:
     ax.axhline(0, color="0.3", lw=1, zorder=1.5)  # the table
     # the board under the animated lines (drawn last in a live frame): a full redraw draws it the same
     ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=3, solid_capstyle="butt", zorder=1.8)
-    ax.text(0.0625, -0.035, "board", fontsize=6, ha="center", va="top", color="0.1")
+    ax.annotate(
+        "board",
+        (0.0625, 0.0),
+        xytext=(0, -3),
+        textcoords="offset points",
+        fontsize=6,
+        ha="center",
+        va="top",
+        color="0.1",
+    )
     (rays,) = ax.plot([], [], "-", color=palette.ORANGE, lw=1)  # the photo's top and bottom rows
     (axis,) = ax.plot([], [], "--", color="0.4", lw=1)  # the optical axis, to the board's centre
     (eye,) = ax.plot([], [], "o", color=palette.ORANGE, ms=6)
@@ -243,6 +269,7 @@ def _figure() -> SimpleNamespace:
     return SimpleNamespace(
         view=view,
         side=side,
+        side_ax=ax_side,
         ax_plot=ax_plot,
         corners=corners,
         edge=edge,
@@ -305,6 +332,10 @@ def plane_error() -> Demo:
         fig.picks.set_data(TILTS, from_picks)
         fig.here.set_data([v["tilt"]] * 2, [1000 * now.sigma, 1000 * now_x.sigma])
         _side_update(fig.side, geometry(v["tilt"], v["distance"]))
+        lim = _side_limits(v["distance"])
+        if fig.side_ax.get_xlim() != lim[0]:  # the view follows the distance: a full redraw, once
+            fig.side_ax.set(xlim=lim[0], ylim=lim[1])
+            fig.view.invalidate()
         fig.ax_plot.title.set_text(f"predicted error at {v['distance']:.2f} m from the board")
         state.update(
             sigma_mm=1000 * now.sigma,
