@@ -238,3 +238,28 @@ def test_point_covariance_names_a_transposed_picking_term():
     with pytest.raises(AssertionError) as info:
         check("point_covariance", picking_transposed)
     assert "J_u @ J_u.T" in str(info.value) and "(4, 4) term" in str(info.value)
+
+
+def test_flip_gap_accepts_opencv_and_names_the_per_coordinate_rms():
+    import cv2
+
+    def opencv(K, R1, t1, R2, t2, X, sigma):  # cv2.projectPoints, offsets added up with np.hypot
+        x1, x2 = (
+            cv2.projectPoints(X, cv2.Rodrigues(R)[0], t, K, None)[0].reshape(-1, 2)
+            for R, t in ((R1, t1), (R2, t2))
+        )
+        d = x2 - x1
+        return np.sqrt(np.sum(np.hypot(d[:, 0], d[:, 1]) ** 2)) / (2 * sigma)
+
+    assert check("flip_gap", opencv).passed is True
+
+    def rms(K, R1, t1, R2, t2, X, sigma):  # OpenCV's rms per coordinate, halved
+        x1, x2 = (
+            cv2.projectPoints(X, cv2.Rodrigues(R)[0], t, K, None)[0].reshape(-1, 2)
+            for R, t in ((R1, t1), (R2, t2))
+        )
+        return np.sqrt(np.mean((x2 - x1) ** 2)) / 2 / sigma
+
+    with pytest.raises(AssertionError) as info:
+        check("flip_gap", rms)
+    assert "ADDS them up" in str(info.value), str(info.value)

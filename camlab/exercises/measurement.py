@@ -275,7 +275,7 @@ def _reach_cases():
 
 
 REACH_RTOL = 1e-6
-"""Exercise 6's relative tolerance (max_depth): 2.5 um on 2.5 m passes a bisection or float32 answer; the nearest
+"""Exercise 7's relative tolerance (max_depth): 2.5 um on 2.5 m passes a bisection or float32 answer; the nearest
 slip (sqrt(2) sigma_d) is 19 % off."""
 
 
@@ -304,6 +304,7 @@ def _reach_context(f, B, s, e):
         no_B=float(np.sqrt(e * f / s)),
         root2_sigma=float(np.sqrt(e * f * B / (np.sqrt(2) * s))),
         f_outside=float(np.sqrt(e * B / s) * f),
+        plane_law=e * f / s,  # sigma = Z sigma_d / f solved for Z: the on-plane law, no B
     )
 
 
@@ -314,6 +315,14 @@ _REACH_MISTAKES = (
         "you returned max_error f B / sigma_d, which is Z^2, not Z. Either you stopped at Z^2 and forgot "
         "the square root, or you solved sigma_Z = Z sigma_d / (f B), a law linear in Z, where the depth "
         "error grows with Z^2 (dZ/dd = -Z^2 / (f B)). Z_max = sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "plane law",
+        lambda c: c.plane_law,
+        "you returned max_error f / sigma_d: that solves sigma = Z sigma_d / f, the ON-PLANE law of "
+        "section 2 (one pixel covers Z / f metres sideways), linear in Z and without the baseline. A depth "
+        "comes from a disparity d = f B / Z, so its error grows as Z^2: sigma_Z = Z^2 sigma_d / (f B), "
+        "and Z_max = sqrt(max_error f B / sigma_d).",
     ),
     Mistake(
         "sigma_d and max_error swapped",
@@ -501,6 +510,7 @@ register_exercise(
         wrong_variants=(
             (_reach_variant("no root"), "forgot the square root"),
             (_reach_variant("no root"), "linear in Z"),
+            (_reach_variant("plane law"), "ON-PLANE law"),
             (_reach_variant("sigma_d and max_error swapped"), "swapped sigma_d and max_error"),
             (_reach_variant("cube root"), "cube root"),
             (_reach_variant("inverted"), "upside down"),

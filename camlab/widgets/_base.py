@@ -178,6 +178,14 @@ class FigureView:
                 artist.do_3d_projection()
             self.fig.draw_artist(artist)
 
+    def invalidate(self) -> None:
+        """Say that the static part changed (an axis's limits): the next :meth:`refresh` draws it all anew.
+
+        The cached background would show the old limits under the new artists; dropping it makes the
+        next refresh a full draw, which caches the new background (its ``draw_event``).
+        """
+        self._background = None
+
     def refresh(self) -> None:
         """Show the figure's current artists."""
         if self.mode == "png":

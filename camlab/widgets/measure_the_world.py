@@ -119,7 +119,24 @@ def length_sigma(
 SIDE_LIM = (
     (-0.25, 1.6),
     (-0.15, 1.6),
-)  # the side view's y and height limits, m: every setting fits
+)  # the side view's y and height limits at the farthest distance, m; nearer, they shrink with it
+
+
+def _side_limits(distance: float) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The side view's limits at ``distance`` (m): :data:`SIDE_LIM` scaled to fit the camera at every tilt.
+
+    Parameters
+    ----------
+    distance : float
+        From the camera to the board's centre, metres (0.4 to 1.5).
+
+    Returns
+    -------
+    tuple
+        ``((y_min, y_max), (height_min, height_max))``, metres, in the same proportions at every distance.
+    """
+    s = (distance + 0.1) / 1.6  # 1 at the slider's 1.5 m; the camera stays inside at 75 deg
+    return tuple((lo * s, hi * s) for lo, hi in SIDE_LIM)
 
 
 def _side_view(ax) -> SimpleNamespace:
@@ -133,7 +150,16 @@ def _side_view(ax) -> SimpleNamespace:
     ax.axhline(0, color="0.3", lw=1, zorder=1.5)  # the table
     # the board under the animated lines (drawn last in a live frame): a full redraw draws it the same
     ax.plot([-0.0125, 0.1375], [0, 0], "-", color="0.1", lw=3, solid_capstyle="butt", zorder=1.8)
-    ax.text(0.0625, -0.035, "board", fontsize=6, ha="center", va="top", color="0.1")
+    ax.annotate(
+        "board",
+        (0.0625, 0.0),
+        xytext=(0, -3),
+        textcoords="offset points",
+        fontsize=6,
+        ha="center",
+        va="top",
+        color="0.1",
+    )
     (rays,) = ax.plot([], [], "-", color=palette.ORANGE, lw=1)  # the photo's top and bottom rows
     (axis,) = ax.plot([], [], "--", color="0.4", lw=1)  # the optical axis, to the board's centre
     (eye,) = ax.plot([], [], "o", color=palette.ORANGE, ms=6)
@@ -141,39 +167,27 @@ def _side_view(ax) -> SimpleNamespace:
 
 
 def _plan_view(ax) -> None:
-    """The table from above, zoomed on the board: where the two edges lie beside it (static)."""
-    # seen from above (-z, where the camera is): board y to the right, board x up; right x up = -z
-    ax.set(xlim=(-0.09, 0.26), ylim=(-0.05, 0.31), aspect="equal")
-    ax.set_xlabel("board y (m); the camera tilts toward +y", fontsize=8)
-    ax.set_ylabel("board x (m)", fontsize=8)
+    """The table from above, zoomed on the board, drawn as the photo shows it: board x right, y down."""
+    # seen from above (-z, where the camera is), oriented like the photo: board x to the right, board y
+    # down (toward the near side, where you stand and toward which the camera tilts)
+    ax.set(xlim=(-0.06, 0.3), ylim=(0.24, -0.1), aspect="equal")
+    ax.set_xlabel("board x (m)", fontsize=8)
+    ax.set_ylabel("board y (m); camera tilts to +y", fontsize=8)
     ax.tick_params(labelsize=7)
     ax.grid(alpha=0.3)
-    ax.set_title("the table from above (zoom)", fontsize=9)
-    ax.plot(BOARD[:, 1], BOARD[:, 0], ".", ms=2, color="0.1")  # the 54 corners
-    ax.plot(*OBJECT[:, [1, 0]].T, "-", color=palette.PURPLE, lw=3, solid_capstyle="butt")
-    ax.plot(*OBJECT_ACROSS[:, [1, 0]].T, "-", color=palette.BROWN, lw=3, solid_capstyle="butt")
+    ax.set_title("the table from above (as in the photo)", fontsize=9)
+    ax.plot(BOARD[:, 0], BOARD[:, 1], ".", ms=2, color="0.1")  # the 54 corners
+    ax.plot(*OBJECT[:, :2].T, "-", color=palette.PURPLE, lw=3, solid_capstyle="butt")
+    ax.plot(*OBJECT_ACROSS[:, :2].T, "-", color=palette.BROWN, lw=3, solid_capstyle="butt")
     ax.plot(
-        CENTRE[1], CENTRE[0], "+", color="0.4", ms=8, mew=1.5
+        CENTRE[0], CENTRE[1], "+", color="0.4", ms=8, mew=1.5
     )  # where the optical axis meets it
     text = dict(fontsize=7, path_effects=palette.halo(2))
-    ax.text(-0.03, 0.1, "board", color="0.1", rotation=90, ha="center", va="center", **text)
-    ax.annotate(
-        "along the slope",
-        (0.0625, 0.24),
-        xytext=(-0.08, 0.275),
-        color=palette.PURPLE,
-        va="bottom",
-        **text,
+    ax.text(0.1, -0.045, "board", color="0.1", ha="center", va="bottom", **text)
+    ax.text(
+        0.255, 0.0625, "along the slope", color=palette.PURPLE, rotation=90, va="center", **text
     )
-    ax.annotate(
-        "across",
-        (0.165, 0.1),
-        xytext=(0.172, 0.1),
-        color=palette.BROWN,
-        rotation=90,
-        va="center",
-        **text,
-    )
+    ax.text(0.1, 0.18, "across the slope", color=palette.BROWN, ha="center", va="top", **text)
 
 
 def _side_update(side: SimpleNamespace, g: SimpleNamespace) -> None:
@@ -255,6 +269,7 @@ def _figure() -> SimpleNamespace:
     return SimpleNamespace(
         view=view,
         side=side,
+        side_ax=ax_side,
         ax_plot=ax_plot,
         corners=corners,
         edge=edge,
@@ -317,6 +332,10 @@ def plane_error() -> Demo:
         fig.picks.set_data(TILTS, from_picks)
         fig.here.set_data([v["tilt"]] * 2, [1000 * now.sigma, 1000 * now_x.sigma])
         _side_update(fig.side, geometry(v["tilt"], v["distance"]))
+        lim = _side_limits(v["distance"])
+        if fig.side_ax.get_xlim() != lim[0]:  # the view follows the distance: a full redraw, once
+            fig.side_ax.set(xlim=lim[0], ylim=lim[1])
+            fig.view.invalidate()
         fig.ax_plot.title.set_text(f"predicted error at {v['distance']:.2f} m from the board")
         state.update(
             sigma_mm=1000 * now.sigma,
@@ -424,6 +443,8 @@ RAY_MM_PER_PX = 0.332
 ALPHAS = np.linspace(3.0, 120.0, 118)
 RAY_HALF = (18.0, 30.0)
 """The ray panel's half-width and half-height, in units of e (one ray's sideways sigma)."""
+BAR_MM = (0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0)
+"""The ray panel's scale-bar lengths (mm): the longest that spans at most 5 e is drawn."""
 
 
 def _ray_figure() -> SimpleNamespace:
@@ -433,7 +454,7 @@ def _ray_figure() -> SimpleNamespace:
     # in units of e, one ray's sideways sigma: the picking slider changes only the mm scale bar
     ax.set(xlim=(-RAY_HALF[0], RAY_HALF[0]), ylim=(-RAY_HALF[1], RAY_HALF[1]), aspect="equal")
     ax.set_xlabel("across, in the rays' plane (units of e)", fontsize=8)
-    ax.set_ylabel("depth, along the bisector (units of e)", fontsize=8)
+    ax.set_ylabel("depth, along the bisector (units of e; cameras above)", fontsize=8)
     ax_law.set(xlim=(0, 124), ylim=(0.02, 20), yscale="log")  # room for the ring at 120 deg
     ax_law.set_xlabel("angle α between the rays (deg)", fontsize=8)
     ax_law.set_ylabel("one σ of the point (mm, log scale)", fontsize=8)
@@ -493,7 +514,8 @@ def ray_angle() -> Demo:
     -------
     Demo
         Controls ``alpha`` (the angle between the rays, degrees) and ``pick`` (picking sigma, px);
-        ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma) and ``in_frame``.
+        ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma), ``in_frame`` and the scale bar's
+        length ``bar_mm``.
     """
     fig = _ray_figure()
     readout = W.HTML()
@@ -512,12 +534,12 @@ def ray_angle() -> Demo:
             for s, band in zip((-1, 1), pair, strict=True):
                 band.set_data(*(np.outer([-60, 60], d) + s * n).T)
         fig.ellipse.set_data(k95 * across / e * np.cos(ring), k95 * depth / e * np.sin(ring))
-        x0, y0 = (
-            -RAY_HALF[0] + 1.5,
-            -RAY_HALF[1] + 2.0,
-        )  # the scale bar, bottom left: 1 mm in units of e
-        fig.bar.set_data([x0, x0 + 1 / e], [y0, y0])
+        # the scale bar, left of the corner where no ray passes: 0.2, 1 or 2 mm, whichever spans at most 5 e
+        bar_mm = max(b for b in BAR_MM if b / e <= 5.0)
+        x0, y0 = -RAY_HALF[0] + 1.5, -3.0
+        fig.bar.set_data([x0, x0 + bar_mm / e], [y0, y0])
         fig.bar_text.set_position((x0, y0 + 0.8))
+        fig.bar_text.set_text(f"{bar_mm:g} mm")
         c = RAY_MM_PER_PX * v["pick"]
         fig.law_depth.set_data(ALPHAS, c / np.sin(np.radians(ALPHAS) / 2))
         fig.law_across.set_data(ALPHAS, c / np.cos(np.radians(ALPHAS) / 2))
@@ -529,7 +551,7 @@ def ray_angle() -> Demo:
         ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px: e = {e:.3f} mm")
         ax_law.title.set_text(f"the two laws, c = {c:.3f} mm at {v['pick']:.2f} px picks")
         in_frame = bool(k95 * depth / e <= RAY_HALF[1] and k95 * across / e <= RAY_HALF[0])
-        state.update(depth_mm=depth, across_mm=across, in_frame=in_frame)
+        state.update(depth_mm=depth, across_mm=across, in_frame=in_frame, bar_mm=bar_mm)
         readout.value = monospace(
             f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (ellipse half-axis {k95 * depth:5.2f} mm)\n"
             f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (ellipse half-axis {k95 * across:5.2f} mm)\n"
