@@ -529,7 +529,7 @@ def _place_names(labels, points, corners, out_hw) -> None:
 
     A name sits across the line A'D' from its point, on the side away from the nearest corner
     marker (centred 13 points off, 20 across a vertical line, where the text is widest), or 17
-    points off straight away from a corner marker within 20 px. It is hidden where
+    points off a corner marker within 20 px, diagonally away from it and from the line. It is hidden where
     its text would run off the canvas, where its point lies under a marker (within 4 px of a
     corner), or within 14 px of a name already shown.
 
@@ -554,9 +554,9 @@ def _place_names(labels, points, corners, out_hw) -> None:
         offset = tuple(
             side * (13 + 7 * abs(across[0])) * across
         )  # wider across a steep line: text is wide
-        if gap.min() < 20:  # the side away from the nearest marker (v points down, offsets up)
-            d = away / max(np.linalg.norm(away), 1e-9) * 17
-            offset = (d[0], -d[1])
+        if gap.min() < 20:  # away from the nearest marker (v points down, offsets up), off the line
+            d = np.array([away[0], -away[1]]) / max(np.linalg.norm(away), 1e-9) + side * across
+            offset = tuple(d / max(np.linalg.norm(d), 1e-9) * 17)
         label.xyann = offset
         visible = bool(
             np.isfinite(p).all()
