@@ -189,7 +189,7 @@ def _collection_check(coll, background: np.ndarray):
     ratios = []
     if isinstance(coll, LineCollection):
         colours = to_rgba_array(coll.get_colors())
-        if coll.get_linewidth().max() <= 0 or len(colours) == 0:
+        if np.max(coll.get_linewidth()) <= 0 or len(colours) == 0:
             return None
         for i, seg in enumerate(coll.get_segments()):
             if len(seg) < 2:

@@ -61,6 +61,7 @@ MAGENTA = "magenta"  # #FF00FF, 3.1:1: residual arrows over a grey calibration p
 BEFORE = "#BB5566"  # 4.6:1, Tol's high-contrast red: "before" in `camlab rectify`'s histogram
 AFTER = "#004488"  # 9.6:1, Tol's high-contrast blue: "after" (hatched too, so not colour alone)
 INDIGO = "#332288"  # 12.6:1, Tol's indigo: lesson 11's block matching, apart from its magenta
+HOLE = "lime"  # #00FF00: the forward warp's holes (lesson 07): a hue neither its picture nor another mark uses
 OLIVE = "#999933"  # 3.0:1, Tol's muted olive: "behind the plane" in lesson 07's parallax figure (black-edged markers)
 
 # Neutrals (black, white and the grey levels "0.0"-"1.0") have no hue, so they cannot clash

@@ -249,6 +249,9 @@ def _one_set_only(run) -> str:
                     f"other set's raw pixels (thousands) with entries of order 1; Hartley's recipe gives "
                     f"each set its own T (H&Z §4.4.4)."
                 )
+    shared = _shared_t(run, src, dst)
+    if shared:
+        return shared
     moved = _origin_dependence(run, src, dst, g)
     if moved > 1e-6:
         return (
@@ -258,6 +261,32 @@ def _one_set_only(run) -> str:
             f"invariance). Most likely you scaled each set without first moving its centroid to 0. That "
             f"passes on this patch, but step 1 is: centroid to 0, then scale."
         )
+    return ""
+
+
+_MOVED = np.array([[3.0, 0.0, 1000.0], [0.0, 3.0, 1000.0], [0.0, 0.0, 1.0]])
+"""Scale 3 and 1000 px across: the shared-T note's dst, far from src (on the far draw, dst ~ src)."""
+
+
+def _shared_t(run, src, dst) -> str:
+    """A note for a DLT that normalises both sets with one set's T ("" otherwise).
+
+    On the far draw dst lies on top of src, so src's T suits dst too and the slip is invisible:
+    the note solves again with dst scaled by 3 and moved 1000 px (:data:`_MOVED`), where one set's
+    T leaves the other set about 40 units from 0 with a spread of about 4.
+    """
+    far_dst = map_points(_MOVED, dst)
+    g = np.asarray(run(src.copy(), far_dst.copy()), dtype=float)
+    own = _dlt_with(src, far_dst, lambda p: hartley_normalise(p).T)
+    for which, fixed in (("src", src), ("dst", far_dst)):
+        one = _dlt_with(src, far_dst, lambda p, fixed=fixed: hartley_normalise(fixed).T)
+        if same_up_to_scale(g, one, rtol=1e-6) and not same_up_to_scale(g, own, rtol=1e-6):
+            return (
+                f"Note: you normalised both sets with {which}'s T. That passes here, where dst lies on top "
+                f"of src; with dst scaled by 3 and moved 1000 px away, {which}'s T leaves the other set "
+                f"tens of units from 0 with a spread of a few units: the poor conditioning normalising "
+                f"exists to avoid. Give each set its own T (H&Z §4.4.4), or compute one T from both sets together."
+            )
     return ""
 
 

@@ -138,12 +138,16 @@ def _indexed_image_u_v(image, H, out_shape):
     return out
 
 
-def _indexed_u_v_caught(image, H, out_shape):
-    """The slip image[u, v] with image[v, u]'s bounds, inside try/except IndexError: 0 where it raised."""
+def _indexed_u_v_caught(image, H, out_shape, flip=False):
+    """The slip image[u, v] with image[v, u]'s bounds, inside try/except IndexError: 0 where it raised.
+
+    ``flip=True`` also lifts the output pixel as (v', u', 1), the compound slip.
+    """
     image = np.asarray(image, dtype=float)
     h, w = image.shape[:2]
     v, u = np.mgrid[0 : out_shape[0], 0 : out_shape[1]]
-    X = np.stack([u, v, np.ones_like(u)], axis=-1) @ np.linalg.inv(np.asarray(H, dtype=float)).T
+    M = np.linalg.inv(np.asarray(H, dtype=float)) @ (_FLIP if flip else np.eye(3))
+    X = np.stack([u, v, np.ones_like(u)], axis=-1) @ M.T
     iu, iv = np.rint(X[..., 0] / X[..., 2]).astype(int), np.rint(X[..., 1] / X[..., 2]).astype(int)
     tested = (iu >= 0) & (iu < w) & (iv >= 0) & (iv < h)
     read = tested & (iu < h) & (iv < w)  # passes the test, no IndexError
@@ -279,6 +283,22 @@ _WARP_MISTAKES = (
         "0 <= iv < height (width = image.shape[1]). If you caught an IndexError, drop the try/except: "
         "it hid the slip.",
     ),
+    *(
+        Mistake(
+            f"lifted (v', u', 1) and image[u, v] {how}",
+            slip,
+            "you swapped u and v twice: you lifted the output pixel as (v', u', 1) and read the source "
+            "as image[u, v]. The two swaps do not cancel (H^-1 mixes the coordinates). Lift (u', v', 1), "
+            "column first, and read image[iv, iu], row first; drop any try/except that hid an IndexError.",
+        )
+        for how, slip in (
+            (
+                "bounds swapped",
+                lambda c: _warp(c.image, np.linalg.inv(c.H) @ _FLIP, c.shape, swap=True),
+            ),
+            ("IndexError caught", lambda c: _indexed_u_v_caught(c.image, c.H, c.shape, flip=True)),
+        )
+    ),
     Mistake(
         "bounds swapped",
         lambda c: _bounds_swapped(c.image, c.H, c.shape),
@@ -293,6 +313,22 @@ _WARP_MISTAKES = (
         "you tested only iu < width and iv < height, not iu >= 0 and iv >= 0: numpy reads a negative "
         "index from the far end (image[v, -3] is the third column from the right), so points left of or "
         "above the picture wrap around to its other side. Test 0 <= iu < width and 0 <= iv < height.",
+    ),
+    Mistake(
+        "lower bound -1",
+        lambda c: _warp(c.image, np.linalg.inv(c.H), c.shape, first=-1),
+        "you tested iu >= -1 (and iv >= -1): numpy reads index -1 from the far end (image[v, -1] is the "
+        "last column), so points just left of or above the picture read its other side. Valid indices "
+        "start at 0: test 0 <= iu < width and 0 <= iv < height.",
+    ),
+    Mistake(
+        "pixel corners, shifted back",
+        lambda c: _warp(
+            c.image, np.linalg.inv(c.H), c.shape, shift=0.5, rounding=lambda x: np.floor(x - 0.5)
+        ),
+        "you sampled at H^-1 (u' + 0.5, v' + 0.5, 1) and took np.floor(x - 0.5): two half-pixel shifts "
+        "that cancel only where H^-1 is a pure translation; H^-1 scales and turns the first one. The "
+        "course puts pixel centres at integers: map the point (u', v') itself and round with np.rint.",
     ),
     Mistake(
         "bound width - 1",
@@ -434,10 +470,14 @@ def _warp_diagnosis(args, got, expected) -> str:
         and _same_picture(g, _forward(image, H, out_shape))
         or holes.mean() > 0.2
     ):
-        return (
-            f"{holes.mean():.0%} of the picture's output pixels stayed 0: holes, as forward mapping leaves "
-            "them (pushing each source pixel to H x). Loop over the *output* pixels instead and pull each "
-            "one's value from H^-1 (u', v', 1)."
+        forward = _same_picture(g, _forward(image, H, out_shape))
+        return f"{holes.mean():.0%} of the picture's output pixels stayed 0. " + (
+            "Those are holes, as forward mapping leaves them (pushing each source pixel to H x): loop "
+            "over the *output* pixels instead and pull each one's value from H^-1 (u', v', 1)."
+            if forward
+            else "If you push source pixels forward, that leaves holes: loop over the *output* pixels. If "
+            "you already do, check what each reads: " + _PULL + ", tested 0 <= iu < width and "
+            "0 <= iv < height (drop any try/except that hides an IndexError)."
         )
     return _PULL + "; outside the picture, 0 (with cv2.warpPerspective: flags=cv2.INTER_NEAREST)."
 
@@ -577,6 +617,18 @@ register_exercise(
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, rounding=np.trunc), "toward zero"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, swap=True), "image[row v, column u]"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, lower=False), "negative index"),
+            (lambda im, H, s: _warp(im, np.linalg.inv(H), s, first=-1), "index -1"),
+            (
+                lambda im, H, s: _warp(
+                    im, np.linalg.inv(H), s, shift=0.5, rounding=lambda x: np.floor(x - 0.5)
+                ),
+                "two half-pixel shifts",
+            ),
+            (
+                lambda im, H, s: _warp(im, np.linalg.inv(H) @ _FLIP, s, swap=True),
+                "swapped u and v twice",
+            ),
+            (lambda im, H, s: _indexed_u_v_caught(im, H, s, flip=True), "swapped u and v twice"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, top=2), "off by one"),
             (lambda im, H, s: _warp(im, np.linalg.inv(H), s, top=0), "iu <= width"),
             (

@@ -8,6 +8,7 @@ from types import SimpleNamespace
 import cv2
 import ipywidgets as W
 import numpy as np
+from matplotlib.colors import to_rgb
 from matplotlib.patches import Rectangle
 
 from ... import fixtures, scenes
@@ -54,9 +55,11 @@ def _ransac_figure() -> SimpleNamespace:
     arrows = view.animate(ax.add_collection(LineCollection([], lw=1.0)))
     heads = view.animate(ax.scatter(np.zeros(0), np.zeros(0), s=6))
     box_true = view.animate(  # a wide band (3.4:1 on white): RANSAC's dashed frame lies on it
-        ax.plot([], [], "-", color="0.55", lw=6, label="true H (image frame), under RANSAC's")[0]
+        ax.plot([], [], "-", color="0.55", lw=6, label="frame mapped by the true H (grey band)")[0]
     )
-    box_est = view.animate(ax.plot([], [], "--", color="k", lw=1.5, label="RANSAC H")[0])
+    box_est = view.animate(
+        ax.plot([], [], "--", color="k", lw=1.5, label="frame mapped by RANSAC's H")[0]
+    )
     best = view.animate(
         ax.plot([], [], "o", mfc="none", mec="k", mew=2, ms=11, label="the winning sample of 4")[0]
     )
@@ -156,6 +159,7 @@ def _ransac_failed(art, state, src, dst, exc) -> None:
     # the pairs are still the data: drawn in one neutral grey, since there is no verdict
     art.arrows.set_segments(np.stack([src, dst], axis=1))
     art.arrows.set_color("0.8")
+    art.arrows.set_linewidth(1.0)
     art.rejected.set_segments([])
     art.heads.set_offsets(dst)
     art.heads.set_color("0.8")
@@ -185,6 +189,10 @@ def ransac_outliers() -> Demo:
     with confidence p = :data:`CONFIDENCE` and at most :data:`MAX_SAMPLES` samples. Each
     pair's verdict is judged against the truth the demo knows, and the samples drawn are
     set against k, the number needed for the ε found (H&Z section 4.7.1; exercise 3).
+    RANSAC draws its samples in numpy batches (16, then up to 64), so when its estimate of ε
+    improves mid-batch it draws up to one batch more than k: the dot of samples drawn then sits
+    above the ring of k (at seed 0 and 3 px, 80 drawn against k = 45); at a tiny threshold it
+    stops at the cap. The two wrong verdicts (red, blue) are drawn heavier than the right ones.
     Results are cached per setting, so revisiting one redraws without re-running RANSAC.
 
     Returns
@@ -239,6 +247,8 @@ def ransac_outliers() -> Demo:
         art.rejected.set_segments(segments[~kept])  # thin, underneath
         art.arrows.set_segments(segments[kept])
         art.arrows.set_color(colours[order][kept])
+        # the two wrong verdicts (red, blue) heavier, so a few stand out among ~200 green lines
+        art.arrows.set_linewidth(np.where(np.isin(verdict[order][kept], (1, 2)), 2.2, 1.0))
         art.heads.set_offsets(dst[order])
         art.heads.set_color(colours[order])
         bt, be = map_points(H, frame), map_points(r.H, frame)
@@ -288,9 +298,10 @@ def ransac_outliers() -> Demo:
 
 # ----------------------------------------------------------------------------- forward vs inverse
 
-HOLE_COLOUR = (0, 0, 0)
-"""The forward warp's holes inside the area the picture covers: black, against the pale sky and the
-red house alike (outside the picture both panels are a mid grey, OUTSIDE_GREY)."""
+HOLE_COLOUR = tuple(round(255 * c) for c in to_rgb(palette.HOLE))
+"""The forward warp's holes inside the area the picture covers: lime (palette.HOLE), a hue the picture
+does not contain, so holes never read as its dark border (outside the picture both panels are a mid
+grey, OUTSIDE_GREY)."""
 OUTSIDE_GREY = 128
 ZOOM = (80, 108, 18, 24)
 """The zoomed window of the forward warp: (top row, left column, height, width) in output pixels,
@@ -298,7 +309,7 @@ over the house's roof at the default setting, where each landing spot shows as o
 
 
 def _painted(fwd, inv, inside, reached, pulled):
-    """The two warps as shown: the forward warp's holes black, outside both pictures mid grey."""
+    """The two warps as shown: the forward warp's holes lime, outside both pictures mid grey."""
     shown = fwd.copy()
     shown[inside & ~reached] = HOLE_COLOUR
     shown[~inside] = OUTSIDE_GREY
@@ -309,7 +320,7 @@ def _painted(fwd, inv, inside, reached, pulled):
 
 def _label_warp_axes(ax_f, ax_z, ax_zi, ax_i):
     """Titles and axis labels of the four panels: forward, its box enlarged, the inverse's, inverse."""
-    ax_f.set_title("forward: push each source pixel\n(holes black)", fontsize=10, pad=6)
+    ax_f.set_title("forward: push each source pixel\n(holes lime green)", fontsize=10, pad=6)
     ax_z.set_title("forward, yellow box\nenlarged", fontsize=10, pad=6)
     ax_zi.set_title("inverse, yellow box\nenlarged: no holes", fontsize=10, pad=6)
     for ax_ in (ax_f, ax_z, ax_zi, ax_i):
@@ -331,7 +342,7 @@ def forward_vs_inverse() -> Demo:
     -------
     Demo
         The demo: controls ``scale`` and ``angle`` (the rotation, degrees), the figure (the
-        forward warp with its holes black, the window :data:`ZOOM` of it and of the inverse
+        forward warp with its holes lime green, the window :data:`ZOOM` of it and of the inverse
         warp enlarged, and the inverse warp; outside the picture both are grey) and ``state`` (``H``, source to output pixels,
         and ``hole_fraction``, the share of the inverse warp's interior pixels, those whose
         four neighbours are covered too, that the forward warp never reaches).

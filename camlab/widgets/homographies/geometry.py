@@ -527,9 +527,9 @@ def _drag_notes(labels, points, out_hw, H) -> str:
 def _place_names(labels, points, corners, out_hw) -> None:
     """Put the names A'..D' beside their points, clear of the corner markers and of each other.
 
-    A name sits across the line A'D' from its point (on the upper side, centred 11 points off, 18
-    across a vertical line, where the text is widest), or 17 points off on the side away from a
-    corner marker within 20 px. It is hidden where
+    A name sits across the line A'D' from its point, on the side away from the nearest corner
+    marker (centred 13 points off, 20 across a vertical line, where the text is widest), or 17
+    points off a corner marker within 20 px, diagonally away from it and from the line. It is hidden where
     its text would run off the canvas, where its point lies under a marker (within 4 px of a
     corner), or within 14 px of a name already shown.
 
@@ -550,12 +550,13 @@ def _place_names(labels, points, corners, out_hw) -> None:
         label.xy = tuple(p)
         gap = np.linalg.norm(corners - p, axis=1) if np.isfinite(p).all() else np.full(4, np.inf)
         away = p - corners[np.argmin(gap)]
+        side = 1.0 if across @ (away[0], -away[1]) >= 0 else -1.0  # across, away from the marker
         offset = tuple(
-            (11 + 7 * abs(across[0])) * across
+            side * (13 + 7 * abs(across[0])) * across
         )  # wider across a steep line: text is wide
-        if gap.min() < 20:  # the side away from the nearest marker (v points down, offsets up)
-            d = away / max(np.linalg.norm(away), 1e-9) * 17
-            offset = (d[0], -d[1])
+        if gap.min() < 20:  # away from the nearest marker (v points down, offsets up), off the line
+            d = np.array([away[0], -away[1]]) / max(np.linalg.norm(away), 1e-9) + side * across
+            offset = tuple(d / max(np.linalg.norm(d), 1e-9) * 17)
         label.xyann = offset
         visible = bool(
             np.isfinite(p).all()
@@ -744,13 +745,15 @@ def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
 def _drag_line_names(ax_s, line_pts) -> None:
     """The points A..D on the source picture's diagonal, with their names."""
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
-    # centred across the line, clear of its halo: below it, but D above it (below D is the frame)
-    across = 16 * _across(line_pts)
-    for name, p in zip("ABCD", line_pts, strict=True):
+    # centred across the line, clear of its halo and dots: B, C, D above it (below B lies the
+    # bow tie's dashed line, below D the frame), A to its right (left of A is the dark border)
+    across = _across(line_pts)
+    offsets = [(15.0, 0.0), *(tuple(k * across) for k in (18, 18, 16))]
+    for name, p, offset in zip("ABCD", line_pts, offsets, strict=True):
         ax_s.annotate(
             name,
             p,
-            xytext=tuple(across if name == "D" else -across),
+            xytext=offset,
             textcoords="offset points",
             ha="center",
             va="center",
