@@ -373,12 +373,31 @@ def local_optimisation(
     .. [2] K. Lebeda, J. Matas and O. Chum, 2012, "Fixing the locally optimized RANSAC",
        *British Machine Vision Conference*.
     """
+    best, cost, _ = _refit_on_inliers(
+        model, start, model.residuals(start[None])[0], threshold, rng, inner, steps
+    )
+    return LocalOptimum(best, cost)
+
+
+def _refit_on_inliers(
+    model: PairModel,
+    start: np.ndarray,
+    res: np.ndarray,
+    threshold: float,
+    rng: np.random.Generator,
+    inner: int,
+    steps: int,
+) -> tuple[np.ndarray, float, np.ndarray]:
+    """:func:`local_optimisation`'s steps 1-4, given ``start``'s residuals ``res``; also returns the winner's residuals.
+
+    The driver already holds ``res`` from scoring, and needs the winner's residuals to
+    count its inliers: passing them in and out saves two evaluations on all pairs per call.
+    """
     s = model.sample_size
-    res = model.residuals(start[None])[0]
-    best, best_cost = start, float(msac_cost(res, threshold))
+    best, best_cost, best_res = start, float(msac_cost(res, threshold)), res
     inl = np.flatnonzero(res < threshold)
     if len(inl) <= s:
-        return LocalOptimum(best, best_cost)
+        return best, best_cost, best_res
     size = min(len(inl) // 2, 7 * s)
     subsets = [inl] + (
         [rng.choice(inl, size, replace=False) for _ in range(inner)] if size > s else []
@@ -388,7 +407,8 @@ def local_optimisation(
         row[sub] = True
     # Every subset refitted together: one batched solve per threshold instead of one per subset.
     models, alive = model.fit_many(masks)
-    for thr in np.geomspace(_LO_FACTOR * threshold, threshold, steps):
+    # thresholds shrinking geometrically from _LO_FACTOR * t to t (np.geomspace, without its overhead)
+    for thr in threshold * _LO_FACTOR ** np.linspace(1.0, 0.0, steps):
         with np.errstate(invalid="ignore"):
             sel = model.residuals(models) < thr
         moving = np.flatnonzero(alive & (sel.sum(axis=1) > s))  # the others keep their fit
@@ -398,11 +418,12 @@ def local_optimisation(
         models[moving[ok]] = refit[ok]
         alive[moving[~ok]] = False  # a refit that fails drops its subset
     if alive.any():
-        costs = msac_cost(model.residuals(models[alive]), threshold)
+        errors = model.residuals(models[alive])
+        costs = msac_cost(errors, threshold)
         k = int(np.argmin(costs))
         if costs[k] < best_cost:
-            best, best_cost = models[alive][k], float(costs[k])
-    return LocalOptimum(best, best_cost)
+            best, best_cost, best_res = models[alive][k], float(costs[k]), errors[k]
+    return best, best_cost, best_res
 
 
 def _chance_significant(
@@ -476,6 +497,7 @@ def ransac(
     rng = np.random.default_rng(rng)
     n, s = len(model), model.sample_size
     best, best_cost, best_count, best_raw, best_sample = None, np.inf, 0, np.inf, None
+    best_res = np.full(n, np.inf)
     needed, drawn = float(max_iters), 0
     while drawn < min(needed, max_iters):
         b = int(np.clip(min(needed, max_iters) - drawn, 1, batch if drawn else max(batch // 4, 1)))
@@ -495,26 +517,29 @@ def ransac(
             pre = msac_cost(model.residuals(models, sub, sub), threshold)
             keep = np.argsort(pre, kind="stable")[: max(2, len(models) // 4)]
             models, idx = models[keep], idx[keep]
-        costs = msac_cost(model.residuals(models), threshold)
+        errors = model.residuals(models)
+        costs = msac_cost(errors, threshold)
         k = int(np.argmin(costs))
         # Compare raw hypotheses with raw ones: a polished model would otherwise shut out
         # every raw hypothesis of a better structure (raw fits are noisier than polished).
         if costs[k] >= best_raw:
             continue
         best_raw = float(costs[k])
-        candidate, cost = models[k], best_raw
+        candidate, cost, res = models[k], best_raw, errors[k]
         if local_optimise:
-            candidate, cost = local_optimisation(model, candidate, threshold, rng)
+            candidate, cost, res = _refit_on_inliers(
+                model, candidate, res, threshold, rng, _LO_INNER, _LO_STEPS
+            )
         if cost >= best_cost:
             continue
-        best, best_cost, best_sample = candidate, cost, idx[k].copy()
-        best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
+        best, best_cost, best_res, best_sample = candidate, cost, res, idx[k].copy()
+        best_count = int(np.sum(best_res < threshold))
         needed = required_iterations(best_count / n, confidence, s)
     if best is not None and local_optimise:
-        best, best_cost = local_optimisation(
-            model, best, threshold, rng, inner=_LO_FINAL_INNER, steps=_LO_FINAL_STEPS
+        best, best_cost, best_res = _refit_on_inliers(
+            model, best, best_res, threshold, rng, _LO_FINAL_INNER, _LO_FINAL_STEPS
         )
-        best_count = int(np.sum(model.residuals(best[None])[0] < threshold))
+        best_count = int(np.sum(best_res < threshold))
     if best is None:
         raise DegenerateError(
             f"{model.name}: none of the {drawn} random samples gave a usable model; the points "
@@ -532,5 +557,4 @@ def ransac(
             f"{threshold} px, but wrong pairs fit it at a rate of {chance:.2g}, so that many could be chance. The "
             f"matches may be mostly wrong (check the matching), or the threshold too small"
         )
-    res = model.residuals(best[None])[0]
-    return RobustFit(best, res < threshold, int(drawn), res, best_cost, best_sample)
+    return RobustFit(best, best_res < threshold, int(drawn), best_res, best_cost, best_sample)

@@ -399,7 +399,7 @@ class HomographyModel(PairModel):
         self.Td_inv = np.linalg.inv(self.Td)
         self.A = _dlt_rows(self.sn, self.dn).reshape(-1, 2, 9)  # each pair's two DLT rows, once
         # each pair's share of A^T A, so any subset's A^T A is one (S, N) @ (N, 81) product
-        self.AtA = np.einsum("nki,nkj->nij", self.A, self.A).reshape(len(self.A), 81)
+        self.AtA = (self.A.transpose(0, 2, 1) @ self.A).reshape(len(self.A), 81)
         self.c1, self.c2 = _columns(self.x1), _columns(self.x2)  # homogeneous columns, once
 
     def normalised_to_pixels(self, Hn: np.ndarray) -> np.ndarray:
