@@ -68,6 +68,32 @@ def test_local_optimisation_beats_plain_msac_in_cost():
     assert lo.cost <= plain.cost
 
 
+def test_marginal_msac_cost_is_the_msac_loss_averaged_over_cuts():
+    # The closed form against the average of min(e^2, tau^2) over 20001 cuts tau on (0, 2t].
+    e, t = np.array([0.0, 0.4, 1.0, 2.9, 3.0, 4.5, 6.0, 50.0]), 3.0
+    taus = (np.arange(20000) + 0.5) * (2 * t / 20000)
+    numeric = np.minimum(e[:, None] ** 2, taus[None] ** 2).mean(axis=1)
+    closed = [float(robust.marginal_msac_cost(x[None], t)) for x in e]
+    assert np.allclose(closed, numeric, rtol=1e-6, atol=1e-8)
+    # half an outlier at the threshold, 0.16 of one at t / 2 (the module docstring's numbers)
+    outlier = float(robust.marginal_msac_cost(np.array([2 * t]), t))
+    assert outlier == pytest.approx(4 * t**2 / 3)
+    assert float(robust.marginal_msac_cost(np.array([t]), t)) / outlier == pytest.approx(0.5)
+    assert float(robust.marginal_msac_cost(np.array([t / 2]), t)) / outlier == pytest.approx(
+        0.15625
+    )
+
+
+def test_loss_is_checked_and_msac_still_selectable():
+    src, dst, _ = _synthetic(0.3)
+    with pytest.raises(CamlabInputError, match="loss: expected one of"):
+        robust.ransac(HomographyModel(src, dst), 3.0, rng=0, loss="magsac")
+    fit = robust.ransac(HomographyModel(src, dst), 3.0, rng=0, loss="msac")
+    assert fit.cost == pytest.approx(float(robust.msac_cost(fit.residuals, 3.0)))
+    fit = robust.ransac(HomographyModel(src, dst), 3.0, rng=0)
+    assert fit.cost == pytest.approx(float(robust.marginal_msac_cost(fit.residuals, 3.0)))
+
+
 @pytest.mark.parametrize(
     "kwargs, match",
     [
@@ -113,6 +139,36 @@ def test_homography_on_real_pairs_is_as_good_as_opencv_and_steady(pair, max_feat
     assert counts.min() >= 0.95 * max(cv_counts), (counts, cv_counts)
     assert np.median(costs) <= 1.05 * cv_cost, (costs, cv_cost)
     assert counts.max() - counts.min() <= max(2, 0.05 * np.median(counts)), counts
+
+
+@pytest.mark.parametrize(
+    "pair, max_features, ratio",
+    [(("building_2", "building_1"), 400, 0.85), (("building_3", "building_1"), 300, 0.85)],
+)
+def test_worst_seed_on_hard_real_pairs_keeps_up_with_magsac(pair, max_features, ratio):
+    # Wide-baseline pairs of a non-planar building, 65-122 matches: MSAC at t prefers, for
+    # some seeds, a tight fit to fewer pairs (79 of 122 at 0.86 px RMS, not 94 at 1.46 px);
+    # the marginalised score keeps every seed within 5 % of the better of OpenCV's RANSAC
+    # and MAGSAC (median inlier count over the same seeds).
+    src, dst = _matches(*pair, max_features, ratio)
+
+    def count(H):
+        return int((symmetric_transfer_error(H, src, dst) < 3).sum())
+
+    cv = []
+    for method in (cv2.RANSAC, cv2.USAC_MAGSAC):
+        runs = []
+        for seed in range(10):
+            cv2.setRNGSeed(seed)
+            runs.append(count(cv2.findHomography(src, dst, method, 3.0)[0]))
+        cv.append(np.median(runs))
+    ours = [count(ransac_homography(src, dst, 3.0, rng=seed).H) for seed in range(10)]
+    assert min(ours) >= 0.95 * max(cv), (ours, cv)
+    msac = [
+        count(robust.ransac(HomographyModel(src, dst), 3.0, rng=seed, loss="msac").model)
+        for seed in range(10)
+    ]
+    assert min(msac) < min(ours), (msac, ours)  # what the marginalised score fixes
 
 
 def test_fundamental_on_a_real_stereo_pair_matches_magsac():

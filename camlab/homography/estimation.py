@@ -516,7 +516,7 @@ def ransac_homography(
     score: str = "transfer",
     batch: int = 64,
 ) -> RansacResult:
-    r"""Robustly estimate H from pairs with outliers: LO-RANSAC with MSAC scoring.
+    r"""Robustly estimate H from pairs with outliers: LO-RANSAC with a marginalised MSAC score.
 
     :class:`HomographyModel` plugged into the driver :func:`camlab.robust.ransac`
     (its docstring derives each step; H&Z algorithm 4.6 [1]_, Fischler & Bolles [2]_):
@@ -525,8 +525,11 @@ def ransac_homography(
     2. Draw random 4-pair samples in batches; reject degenerate ones (3 collinear points
        in either image, or inconsistent triangle orientations); solve all their 4-point
        DLTs with one batched SVD.
-    3. Score every hypothesis by the truncated quadratic (MSAC) cost
-       :math:`\sum_i \min(e_i^2, t^2)` of its ``score`` errors.
+    3. Score every hypothesis by the truncated quadratic (MSAC) loss of its ``score``
+       errors averaged over cuts uniform on :math:`(0, 2t]`,
+       :math:`\sum_i \rho(e_i)` with :math:`\rho(e) = e^2 - e^3 / (3t)` below :math:`2t`
+       (:func:`camlab.robust.marginal_msac_cost`): a pair at the threshold costs half an
+       outlier, so a model that explains more pairs wins over a tight fit to fewer.
     4. Each time a hypothesis beats the best so far, re-fit it on its inliers by the
        normalised DLT (local optimisation), so the kept model is a least-squares fit to
        its consensus, not to 4 noisy points.
