@@ -194,3 +194,63 @@ def test_all_wrong_real_matches_give_too_few_inliers(estimator, args):
         estimator(x1, wrong, *args, rng=0)
     # OpenCV returns a model on the same matches: it does not test for chance.
     assert cv2.findFundamentalMat(x1, wrong, cv2.FM_RANSAC, 1.0, 0.999)[1] is not None
+
+
+# --------------------------------------------------------------------------- the fast paths
+
+
+def test_homography_model_fast_paths_equal_the_plain_ones():
+    """The batched solves equal the textbook ones: minimal samples against an SVD per sample
+    (estimate_homography on the 4 pairs), fit_many against fit one set at a time."""
+    from camlab.homography import estimate_homography, normalise_homography
+
+    src, dst, good = _synthetic(0.3, n=120, seed=5)
+    model = HomographyModel(src, dst)
+    rng = np.random.default_rng(2)
+    idx = np.array([rng.choice(120, 4, replace=False) for _ in range(40)])
+    H, ok = model.minimal(idx)
+    assert ok.sum() > 20
+    for k in np.flatnonzero(ok):
+        # the 4-point DLT by SVD (the last right singular vector), in pixels
+        expected = estimate_homography(src[idx[k]], dst[idx[k]])
+        got = normalise_homography(H[k])
+        assert np.allclose(got, expected, rtol=1e-6, atol=1e-9), k
+    masks = np.zeros((3, 120), bool)
+    masks[0] = good
+    masks[1, :60] = True
+    masks[2, ::2] = good[::2]
+    batched, usable = model.fit_many(masks)
+    assert usable.all()
+    for row, H_b in zip(masks, batched, strict=True):
+        one = model.fit(np.flatnonzero(row))
+        assert np.allclose(H_b * np.sign(H_b[2, 2]), one * np.sign(one[2, 2]), atol=1e-10)
+    # a sample with three collinear points is skipped, its model NaN
+    line = np.array([[0, 1, 2, 3]])
+    flat = HomographyModel(np.array([[0, 0], [1, 1], [2, 2], [0, 5.0]] + [[3, 7.0]]), src[:5])
+    assert not flat.minimal(line).usable[0] and np.isnan(flat.minimal(line).models[0]).all()
+
+
+def test_batched_scoring_equals_one_model_at_a_time():
+    src, dst, _ = _synthetic(0.3, n=200, seed=6)
+    model = HomographyModel(src, dst)
+    H, ok = model.minimal(np.random.default_rng(3).integers(0, 200, (30, 4)))
+    H = H[ok]
+    together = robust.marginal_msac_cost(model.residuals(H), 3.0)
+    alone = [float(robust.marginal_msac_cost(model.residuals(h[None])[0], 3.0)) for h in H]
+    assert np.allclose(together, alone, rtol=1e-12)
+    assert np.allclose(
+        model.residuals(H[:1])[0], symmetric_transfer_error(H[0], src, dst), rtol=1e-12
+    )
+
+
+def test_null_vectors_fall_back_to_the_svd_on_a_singular_system():
+    from camlab.homography.estimation import _null_vectors
+
+    A = np.random.default_rng(7).normal(size=(3, 8, 9))
+    A[1, 7] = 0.0  # rank 7: the 8 x 8 solve fails, the whole batch takes the SVD
+    h, ok = _null_vectors(A)
+    assert ok.tolist() == [True, False, True]
+    assert np.abs(np.einsum("bij,bj->bi", A, h)[ok]).max() < 1e-12
+    assert np.allclose(np.linalg.norm(h, axis=1), 1.0)
+    h_fast, ok_fast = _null_vectors(A[[0, 2]])  # the solve path gives the same unit vectors
+    assert ok_fast.all() and np.allclose(np.abs((h_fast * h[[0, 2]]).sum(axis=1)), 1.0)
