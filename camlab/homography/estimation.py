@@ -424,8 +424,14 @@ def _pair_normal_shares(sn: np.ndarray, dn: np.ndarray) -> np.ndarray:
 def _normal_matrices(sums: np.ndarray) -> np.ndarray:
     r"""(S, 9, 9) normal matrices :math:`A^T A = K \otimes x x^T` summed, from sums of :func:`_pair_normal_shares` (S, 36)."""
     X, Xu, Xv, Xw = sums.reshape(-1, 4, 3, 3).transpose(1, 0, 2, 3)
-    zero = np.zeros_like(X)
-    return np.block([[X, zero, -Xu], [zero, X, -Xv], [-Xu, -Xv, Xw]])
+    M = np.zeros(
+        (len(sums), 9, 9)
+    )  # the 3 x 3 blocks K_ab X: [[X, 0, -Xu], [0, X, -Xv], [-Xu, -Xv, Xw]]
+    M[:, 0:3, 0:3] = M[:, 3:6, 3:6] = X
+    M[:, 0:3, 6:9] = M[:, 6:9, 0:3] = -Xu
+    M[:, 3:6, 6:9] = M[:, 6:9, 3:6] = -Xv
+    M[:, 6:9, 6:9] = Xw
+    return M
 
 
 class HomographyModel(PairModel):
