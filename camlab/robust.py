@@ -38,7 +38,7 @@ The algorithm, step by step (each step is a few lines of :func:`ransac`):
    Chum 2012): a few least-squares fits on random subsets of the inliers, each followed
    by iterated least squares with a threshold shrinking from :math:`3t` to :math:`t`.
    The result is close to the best model the data support, so different seeds agree.
-   The final model gets one more thorough local optimisation.
+   The final model gets one more local optimisation, on fresh random subsets.
 4. **Stop adaptively.** With inlier ratio :math:`w` of the best model so far, one sample
    is all inliers with probability :math:`w^s`, so :math:`k` samples contain one with
    probability :math:`1 - (1 - w^s)^k`. Setting this to the ``confidence`` p gives
@@ -83,7 +83,10 @@ _PREVIEW = 100  # with more pairs than 4x this, hypotheses are first scored on t
 _LO_INNER = 2  # least-squares fits on random inlier subsets per local optimisation
 _LO_STEPS = 3  # iterated least squares: thresholds from _LO_FACTOR * t down to t
 _LO_FACTOR = 3.0
-_LO_FINAL_INNER = 5  # a more thorough local optimisation of the final model
+# One more local optimisation of the final model. 5 subsets instead of 2 found the same
+# model on 113 of 118 regression cases (the others: starved 0.5 px runs) and on every hard
+# real pair (benchmarks/robust_ransac.py), at 15 % more time on 1000 pairs.
+_LO_FINAL_INNER = 2
 _LO_FINAL_STEPS = 3
 _ALPHA = 0.01  # significance level of the chance test (step 5)
 

@@ -254,3 +254,22 @@ def test_null_vectors_fall_back_to_the_svd_on_a_singular_system():
     assert np.allclose(np.linalg.norm(h, axis=1), 1.0)
     h_fast, ok_fast = _null_vectors(A[[0, 2]])  # the solve path gives the same unit vectors
     assert ok_fast.all() and np.allclose(np.abs((h_fast * h[[0, 2]]).sum(axis=1)), 1.0)
+
+
+def test_chance_test_pairing_equals_mapping_every_pair():
+    """HomographyModel maps each point once for the chance test's 3N shuffled pairs; the errors
+    equal the plain per-pair ones, inf where a point maps to infinity."""
+    from camlab.homography.estimation import _columns, _sym_err_batch
+
+    src, dst, _ = _synthetic(0.3, n=150, seed=8)
+    model = HomographyModel(src, dst)
+    H = np.stack([model.fit(np.arange(150)), np.array([[1, 0, 0], [0, 1, 0], [1e-3, 0, 1.0]])])
+    rng = np.random.default_rng(0)
+    i1 = np.tile(np.arange(150), 3)
+    i2 = np.concatenate([rng.permutation(150) for _ in range(3)])
+    paired = model.residuals(H, i1, i2)
+    plain = _sym_err_batch(H, None, _columns(src[i1]), _columns(dst[i2]))
+    assert paired.shape == (2, 450) and np.array_equal(paired, plain)
+    far = np.array([[-1000.0, 5.0], [3.0, 4.0]])  # u = -1000 maps to infinity under H[1]
+    e = HomographyModel(far, far).residuals(H[1:], np.array([0, 1, 0]), np.array([1, 0, 0]))
+    assert np.isinf(e[0, 0]) and np.isinf(e[0, 2]) and np.isfinite(e[0, 1])
