@@ -1,4 +1,4 @@
-r"""One robust estimation driver for models of point pairs: RANSAC with a marginalised MSAC score and local optimisation.
+r"""One robust estimation driver for models of point pairs: RANSAC with an MSAC score and local optimisation.
 
 Homographies (:func:`camlab.homography.ransac_homography`) and fundamental matrices
 (:func:`camlab.epipolar.ransac_fundamental_matrix`) plug into :func:`ransac` by describing
@@ -10,7 +10,7 @@ The algorithm, step by step (each step is a few lines of :func:`ransac`):
 1. **Hypothesise.** Draw random minimal samples of ``s`` pairs (4 for H, 8 for F) and
    solve each exactly; degenerate samples (collinear points, rank deficiency) are skipped.
    Samples are drawn and solved in vectorised batches.
-2. **Score by truncated squares, with the cut marginalised.** Plain RANSAC counts
+2. **Score by truncated squares (optionally with the cut marginalised).** Plain RANSAC counts
    inliers, so every model with the same count ties, however well it fits. MSAC (Torr &
    Zisserman 2000) scores a model by the truncated quadratic loss
    :math:`\sum_i \min(e_i^2, \tau^2)` (:func:`msac_cost`), the negative log-likelihood of
@@ -20,7 +20,7 @@ The algorithm, step by step (each step is a few lines of :func:`ransac`):
    it costs as much as an outlier, so MSAC can prefer a tight fit to fewer pairs over a
    model that explains more (on a real building pair, 79 pairs at 0.86 px RMS over 94 at
    1.46 px). MAGSAC (Barath, Matas & Noskova 2019) marginalises the noise scale instead;
-   its simplest form, and the score :func:`ransac` uses by default
+   its simplest form, the score :func:`ransac` uses with ``loss="marginal"``
    (:func:`marginal_msac_cost`), averages the MSAC loss over cuts :math:`\tau` uniform on
    :math:`(0, T]` with :math:`T = 2t`, whose mean is the threshold :math:`t`:
 
@@ -30,7 +30,8 @@ The algorithm, step by step (each step is a few lines of :func:`ransac`):
    since for :math:`e < T` the cuts below :math:`e` give :math:`\tau^2` (integral
    :math:`e^3 / 3`) and those above give :math:`e^2` (integral :math:`e^2 (T - e)`). A pair
    at the threshold now costs half an outlier, not a whole one, and a pair at :math:`t/2`
-   0.16 of one (MSAC: 0.25). ``loss="msac"`` scores by MSAC at :math:`t`, to compare.
+   0.16 of one (MSAC: 0.25). The default, ``loss="msac"``, is MSAC at :math:`t`, the score
+   lesson 07 teaches; ``benchmarks/robust_ransac.py`` compares the two on hard real pairs.
 3. **Optimise locally (LO-RANSAC).** A model from a minimal sample is fitted to the noise
    of only ``s`` points, so it is worse than the consensus it found. Each time a
    hypothesis beats the best so far, :func:`local_optimisation` re-fits it on its inliers
@@ -240,8 +241,8 @@ class RobustFit(NamedTuple):
     residuals : (N,) ndarray
         Each pair's error under ``model``, pixels.
     cost : float
-        The cost of ``model`` under the driver's ``loss`` (:func:`marginal_msac_cost` by
-        default, :func:`msac_cost` with ``loss="msac"``).
+        The cost of ``model`` under the driver's ``loss`` (:func:`msac_cost` by default,
+        :func:`marginal_msac_cost` with ``loss="marginal"``).
     sample : (s,) int ndarray
         Indices of the minimal sample whose hypothesis became ``model`` (after local
         optimisation), e.g. to show it in a demo.
@@ -385,8 +386,8 @@ def _check_settings(threshold, confidence, max_iters) -> tuple[float, float, int
 def _check_loss(loss):
     if loss not in _LOSSES:
         raise CamlabInputError(
-            f"loss: expected one of {sorted(_LOSSES)}, got {loss!r}; 'marginal' (the default) "
-            f"or 'msac' to compare"
+            f"loss: expected one of {sorted(_LOSSES)}, got {loss!r}; 'msac' (the default) "
+            f"or 'marginal'"
         )
     return _LOSSES[loss]
 
@@ -427,7 +428,7 @@ def local_optimisation(
         Thresholds of the iterated least squares, from 3t down to t.
     loss : {"msac", "marginal"}, optional
         The cost candidates are compared by: :func:`msac_cost` (default) or
-        :func:`marginal_msac_cost` (what :func:`ransac` uses by default).
+        :func:`marginal_msac_cost`.
 
     Returns
     -------
@@ -531,9 +532,9 @@ def ransac(
     *,
     batch: int = 64,
     local_optimise: bool = True,
-    loss: str = "marginal",
+    loss: str = "msac",
 ) -> RobustFit:
-    """Fit ``model`` robustly: sample, score (marginalised MSAC), optimise locally, stop adaptively, refuse chance.
+    """Fit ``model`` robustly: sample, score (MSAC), optimise locally, stop adaptively, refuse chance.
 
     See the module docstring for the derivation of each step.
 
@@ -553,8 +554,10 @@ def ransac(
         Samples solved and scored per vectorised step.
     local_optimise : bool
         Step 3 (default on); off gives plain MSAC, to compare.
-    loss : {"marginal", "msac"}
-        Step 2's score: :func:`marginal_msac_cost` (default) or :func:`msac_cost`.
+    loss : {"msac", "marginal"}
+        Step 2's score: :func:`msac_cost` (default: what lesson 07 teaches) or
+        :func:`marginal_msac_cost` (MSAC averaged over cuts up to 2t: a pair at t costs half
+        an outlier; better worst seeds on hard wide-baseline pairs).
 
     Returns
     -------

@@ -364,7 +364,7 @@ def ransac_fundamental_matrix(
     *,
     batch: int = 128,
 ) -> FundamentalRansacResult:
-    r"""Robust F from pairs with outliers: LO-RANSAC over 8-point samples, scored by marginalised MSAC on Sampson distance.
+    r"""Robust F from pairs with outliers: LO-RANSAC over 8-point samples, MSAC-scored by Sampson distance.
 
     :class:`FundamentalModel` plugged into the driver :func:`camlab.robust.ransac` (its
     docstring derives each step):
@@ -372,9 +372,8 @@ def ransac_fundamental_matrix(
     1. Normalise both point sets once (Hartley [2]_).
     2. Draw samples of 8 distinct pairs in batches; solve all their 8-point systems with
        one batched SVD and enforce rank 2 on each.
-    3. Score every hypothesis by the truncated quadratic (MSAC) loss of the
-       :func:`sampson_distance` d (pixels) averaged over cuts uniform on :math:`(0, 2t]`
-       (:func:`camlab.robust.marginal_msac_cost`).
+    3. Score every hypothesis by the truncated quadratic (MSAC) cost
+       :math:`\sum_i \min(d_i^2, t^2)` of the :func:`sampson_distance` d (pixels).
     4. Each time a hypothesis beats the best so far, re-fit it on its inliers
        (normalised 8-point with Sampson weights; local optimisation).
     5. Stop after :math:`k = \log(1-p) / \log(1-w^8)` samples for the best inlier ratio w

@@ -591,8 +591,9 @@ def ransac_homography(
     *,
     score: str = "transfer",
     batch: int = 64,
+    loss: str = "msac",
 ) -> RansacResult:
-    r"""Robustly estimate H from pairs with outliers: LO-RANSAC with a marginalised MSAC score.
+    r"""Robustly estimate H from pairs with outliers: LO-RANSAC with an MSAC score.
 
     :class:`HomographyModel` plugged into the driver :func:`camlab.robust.ransac`
     (its docstring derives each step; H&Z algorithm 4.6 [1]_, Fischler & Bolles [2]_):
@@ -602,8 +603,9 @@ def ransac_homography(
        in either image, or inconsistent triangle orientations); solve all their 4-point
        DLTs in one batched solve (the 8 x 8 system with :math:`h_9 = 1`).
     3. Score every hypothesis by the truncated quadratic (MSAC) loss of its ``score``
-       errors averaged over cuts uniform on :math:`(0, 2t]`,
-       :math:`\sum_i \rho(e_i)` with :math:`\rho(e) = e^2 - e^3 / (3t)` below :math:`2t`
+       errors, :math:`\sum_i \min(e_i, t)^2` (:func:`camlab.robust.msac_cost`); with
+       ``loss="marginal"`` by that loss averaged over cuts uniform on :math:`(0, 2t]`,
+       :math:`\rho(e) = e^2 - e^3 / (3t)` below :math:`2t`
        (:func:`camlab.robust.marginal_msac_cost`): a pair at the threshold costs half an
        outlier, so a model that explains more pairs wins over a tight fit to fewer.
     4. Each time a hypothesis beats the best so far, re-fit it on its inliers by the
@@ -630,6 +632,8 @@ def ransac_homography(
         :func:`sampson_distance`.
     batch : int
         Samples solved and scored per vectorised step.
+    loss : {"msac", "marginal"}
+        Step 3's score (see :func:`camlab.robust.ransac`).
 
     Returns
     -------
@@ -653,7 +657,9 @@ def ransac_homography(
     s, d = check_correspondences(src, dst)
     if score not in ("transfer", "sampson"):
         raise CamlabInputError(f"score: expected 'transfer' or 'sampson', got {score!r}")
-    fit = ransac(HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch)
+    fit = ransac(
+        HomographyModel(s, d, score), threshold, confidence, max_iters, rng, batch=batch, loss=loss
+    )
     return RansacResult(
         normalise_homography(fit.model), fit.inliers, fit.iterations, fit.residuals, fit.sample
     )

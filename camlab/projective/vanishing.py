@@ -237,7 +237,7 @@ def vanishing_point_ransac(
     RANSAC [1]_ by :func:`camlab.robust.ransac`, the driver the homography
     and the fundamental matrix use (lesson 07): two random segments propose the meet of their
     lines; every segment is scored by the angle at which it misses the proposal
-    (:func:`pointing_angles`), capped (marginalised MSAC, :func:`camlab.robust.marginal_msac_cost`), so the proposal most segments
+    (:func:`pointing_angles`), capped at ``tol_deg`` (MSAC), so the proposal most segments
     point at wins; it is polished on its inliers and must beat what segments joining
     unrelated end points reach by chance. The winner is re-estimated from the segments that
     point at it within ``tol_deg`` (:func:`segments_pointing_at`) by :func:`vanishing_point`
