@@ -176,7 +176,7 @@ def test_photos_load_and_are_attributed():
     assert {"calib_left01", "calib_left14", "street", "walls_left", "walls_right"} <= set(names)
     attribution = (data.data_dir() / "photos" / "ATTRIBUTION.md").read_text()
     for name in names:  # every shipped photo is listed with its source
-        assert f"`{name}." in attribution or name.startswith("calib_left"), name
+        assert f"`{name}." in attribution or name.startswith(("calib_left", "calib_right")), name
     rgb, gray = data.load_photo("church"), data.load_photo("calib_left01", gray=True)
     assert rgb.dtype == np.uint8 and rgb.shape == (532, 800, 3) and gray.shape == (480, 640)
     assert rgb[..., 2].mean() > rgb[..., 0].mean()  # a blue sky: RGB order, not OpenCV's BGR
