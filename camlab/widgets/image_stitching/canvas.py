@@ -148,8 +148,11 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
 
 
 def _set_frame(frame, extent) -> None:
-    """Draw the canvas's border on the fitted image's extent (left, right, bottom, top)."""
-    x0, x1, y1, y0 = extent
+    """Draw the canvas's border 2 axes units outside the fitted image's extent (left, right, bottom, top).
+
+    Outside it, the grey line lies on the black round the canvas, never on the image.
+    """
+    x0, x1, y1, y0 = np.add(extent, [-2, 2, 2, -2])
     frame.set_data([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0])
 
 

@@ -72,10 +72,10 @@ def feature_matches() -> Demo:
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     # the images stay, only the lines (and the keypoints' visibility) change. Green over red here
-    # (at r near 1 the many red lines would bury the few green ones), and under both, in mid-grey
+    # (at r near 1 the many red lines would bury the few green ones), and under both, in dark grey
     # dashes without a halo (a seam's style stays the seams'), the matches the mutual check drops
     art["good"].set_zorder(2.2)
-    dropped = LineCollection([], colors="0.5", linewidths=1.4, linestyles=(0, (4, 2)), zorder=1.9)
+    dropped = LineCollection([], colors="0.25", linewidths=2.2, linestyles=(0, (5, 2)), zorder=1.9)
     ax.add_collection(dropped)
     view.animate(dropped, art["bad"], art["good"])
     kps = [
