@@ -133,7 +133,11 @@ def feature_matches() -> Demo:
             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
             + f"\nlines drawn: {int((good & show).sum())} green, {int((~good & show).sum())} red:\n"
             f"  1 match in {every} (keypoint index divisible by {every})"
-            + (f"\ndropped by the mutual check: {int(gone.sum())} (dashed)" if v["mutual"] else "")
+            + (
+                f"\ndropped by the mutual check: {int(gone.sum())} (grey dashes)"
+                if v["mutual"]
+                else ""
+            )
         )
 
     controls = {
