@@ -253,6 +253,19 @@ _GAIN_SLIPS = (
         "the smaller sigma the prior barely counts.",
     ),
     Mistake(
+        "sigmas swapped",
+        lambda c: _solve(c.N, c.M, sigma_n=SIGMA_G, sigma_g=SIGMA_N),
+        "you swapped the two sigmas: sigma_N = 10 grey levels divides the data term (the overlaps' "
+        "differences), sigma_g = 1 the prior (1 - g_i)^2. Swapped, the data term weighs 10 000 times too much "
+        "against the prior.",
+    ),
+    Mistake(
+        "sigma_N = 1",
+        lambda c: _solve(c.N, c.M, sigma_n=1.0),
+        "you took sigma_N = 1: the noise of the means is sigma_N = 10 grey levels (section 5), so the data term "
+        "is divided by sigma_N^2 = 100; with 1 it weighs 100 times too much against the prior.",
+    ),
+    Mistake(
         "sigma_g = 0.1",
         lambda c: _solve(c.N, c.M, sigma_g=0.1),
         "you took sigma_g = 0.1, Brown & Lowe's value; this exercise (and camlab) takes sigma_g = 1, a weaker "
@@ -396,6 +409,13 @@ register_exercise(
         diagnosis_runs=True,
         teaching=gains_from_overlaps,
         exception_hint=_gains_exception_hint,
+        in_place_examples={
+            "N": (
+                "`np.fill_diagonal(N, 0)`, `N[:, 0] = ...`, `N /= N.sum()`",
+                "`N = N.copy()` then `np.fill_diagonal(N, 0)`, or `N * (1 - np.eye(len(N)))`",
+            ),
+            "I_mean": ("`I_mean /= 255`, `I_mean[I_mean == 0] = ...`", "`I_mean / 255`"),
+        },
         wrong_variants=(
             (lambda N, M: np.zeros(len(N)), "without the prior"),
             (_variant("prior only on the right"), "first only"),
@@ -422,6 +442,8 @@ register_exercise(
                 "kept it in your sums",
             ),
             (_variant("sigma_g = 0.1"), "Brown & Lowe's value"),
+            (_variant("sigmas swapped"), "swapped the two sigmas"),
+            (_variant("sigma_N = 1"), "you took sigma_N = 1"),
             (_variant("means in 0-1"), "divided the means by 255"),
             (_variant("N_ii in b"), "kept it in b_i"),
             (_pairs_once, "j < i included"),

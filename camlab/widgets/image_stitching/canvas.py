@@ -89,7 +89,7 @@ def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
     return np.asarray(points, float) * s + [ox, oy]
 
 
-CANVAS_PAD = 4.0
+CANVAS_PAD = 6.0
 """Axes units of black beyond the box of a panorama's axes: its border outlines stay whole."""
 
 
@@ -97,8 +97,8 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
     """The figure of a panorama with each image's outline.
 
     The image, four outline lines keyed below the axes (over the animated panorama a key would be
-    hidden by every live frame), no ticks, a title to animate. Returns (view, ax, im, lines, legend,
-    title).
+    hidden by every live frame), no ticks, a title to animate, and the canvas's border (grey). Returns
+    (view, ax, im, lines, legend, title, frame).
     """
     view = FigureView(figsize=(9, 3.6))
     ax = view.fig.subplots()
@@ -133,6 +133,8 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
     # a few units of black round the box: an outline on the canvas border is drawn whole, and the
     # bands beside a fitted canvas read as empty canvas, not as part of the page
     pad = CANVAS_PAD
+    # the canvas's own border, grey: its empty (black) pixels stay apart from the black round it
+    frame = view.animate(ax.plot([], [], color="0.6", lw=1.0, zorder=1.5)[0])
     ax.set(
         xlim=(-0.5 - pad, box[1] - 0.5 + pad),
         ylim=(box[0] - 0.5 + pad, -0.5 - pad),
@@ -142,7 +144,16 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
     ax.set_xticks([])
     ax.set_yticks([])
     title = view.animate(ax.set_title(" ", fontsize=9))
-    return view, ax, im, lines, legend, title
+    return view, ax, im, lines, legend, title, frame
+
+
+def _set_frame(frame, extent) -> None:
+    """Draw the canvas's border 2 axes units outside the fitted image's extent (left, right, bottom, top).
+
+    Outside it, the grey line lies on the black round the canvas, never on the image.
+    """
+    x0, x1, y1, y0 = np.add(extent, [-2, 2, 2, -2])
+    frame.set_data([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0])
 
 
 @register(lesson="09", sweep={"reference": [0, 1, 3]})
@@ -169,7 +180,9 @@ def panorama_canvas() -> Demo:
     graph = pe.panorama_graph()
     small, canvases = pe.reference_canvases()
     box = (300, 800)  # the axes' units: (height, width), about the shape the axes get
-    view, ax, im, lines, _, title = _outline_figure(box, lw=2.5, name="view", animate_legend=False)
+    view, ax, im, lines, _, title, frame = _outline_figure(
+        box, lw=2.5, name="view", animate_legend=False
+    )
     readout = W.HTML()
     shown = {ref: _rgba(c.panorama) for ref, c in canvases.items()}
     full_shapes = [im.shape for im in pe.panorama_example().images]  # the 320 x 240 photos
@@ -182,6 +195,7 @@ def panorama_canvas() -> Demo:
         ref = int(v["reference"])
         c = canvases[ref]
         im.set_extent(_fitted_extent(c.shape, box))
+        _set_frame(frame, _fitted_extent(c.shape, box))
         im.set_data(shown[ref])
         hh, ww = c.shape
         for k, ln in enumerate(lines):
@@ -191,7 +205,7 @@ def panorama_canvas() -> Demo:
         fh, fw = full[ref]
         title.set_text(
             f"reference view {ref}: canvas {fw} x {fh} px for the 320 x 240 photos "
-            "(drawn from 160 x 120 thumbnails), scaled to fit"
+            "(drawn from 160 x 120 thumbnails), scaled to fit; grey frame: the canvas"
         )
         state.update(
             reference=ref, canvas=(hh, ww), canvas_full=(fh, fw), T=c.T, display_scale=scale
@@ -284,13 +298,23 @@ def _blend_readout(v: dict, gains, jump: float, scene: float, kept: float) -> st
         + (", ".join(f"{g:.3f}" for g in gains) if v["gains"] else "off")
         + f"\nstep across the seam: {jump:.1f} grey levels\n"
         f"the scene's own step there: {scene:.1f}\n"
-        "  (one photo alone across the same line, no seam)\n"
-        f"the seam's own step: {jump - scene:+.1f} (the step less the scene's"
         + (
-            "; below 0: a step against the scene's, the gains overshoot at this line)"
-            if jump - scene < -0.05
-            else ")"
+            "  (view 1 alone across overwrite's line, no seam)\n"
+            if v["method"] == "overwrite"
+            else "  (the mean of each view alone across the Voronoi seam, no seam)\n"
         )
+        + _own_step_line(jump - scene, bool(v["gains"]))
+    )
+
+
+def _own_step_line(own: float, gains: bool) -> str:
+    """The readout's last line: the seam's own step, "none" under half a grey level (noise)."""
+    if abs(own) < 0.5:
+        return f"the seam's own step: none ({own:+.1f}: under 0.5 grey level, noise)"
+    return f"the seam's own step: {own:+.1f} (the step less the scene's" + (
+        "; below 0: a step against the scene's, the gains overshoot at this line)"
+        if own < 0 and gains
+        else ")"
     )
 
 
@@ -471,7 +495,7 @@ def full_panorama() -> Demo:
     """
     pans = pe.stitched_panoramas()
     box = (300, 780)  # the axes' units: (height, width), about the shape the axes get
-    view, ax, im, lines, legend, title = _outline_figure(
+    view, ax, im, lines, legend, title, frame = _outline_figure(
         box, lw=2.5, name="view", animate_legend=True
     )
     readout = W.HTML()
@@ -481,6 +505,7 @@ def full_panorama() -> Demo:
         r = pans[v["projection"]]
         hh, ww = r.panorama.shape[:2]
         im.set_extent(_fitted_extent((hh, ww), box))
+        _set_frame(frame, _fitted_extent((hh, ww), box))
         im.set_data(shown[v["projection"]])
         for k, ln in enumerate(lines):
             if v["outlines"] and r.outlines[k] is not None:
@@ -491,7 +516,8 @@ def full_panorama() -> Demo:
         legend.set_visible(bool(v["outlines"]))
         scale = _fit((hh, ww), box)[0]
         title.set_text(
-            f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, scaled to fit"
+            f"{v['projection']} canvas: {ww} x {hh} px, reference view {r.reference}, scaled to fit; "
+            "grey frame: the canvas"
         )
         state.update(
             projection=v["projection"],
@@ -503,7 +529,11 @@ def full_panorama() -> Demo:
         )
         rows = "\n".join(
             f"{p.i}-{p.j}: {p.matches:4d} matches {p.inliers:4d} inliers "
-            + (f"rms {p.residual_rms:.2f} ok" if p.accepted else "rejected")
+            + (
+                f"rms {p.residual_rms:.2f} ok"
+                if p.accepted
+                else "rejected: " + p.reason.split(";")[0]
+            )
             for p in r.pairs
         )
         readout.value = monospace(
@@ -814,7 +844,7 @@ def parallax_ghosting() -> Demo:
         grey levels 0-255, ``method``, ``image`` the blend).
     """
     pairs = pe.parallax_pairs()
-    view = FigureView(figsize=(9, 3.6))
+    view = FigureView(figsize=(9, 4.4))
     art = _parallax_figure(view)
     readout = W.HTML()
 

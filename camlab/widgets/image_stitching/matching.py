@@ -48,7 +48,7 @@ def feature_matches() -> Demo:
     :data:`MATCH_STRIDE` (4) are drawn, at every setting
     (:func:`camlab.plotting.stitching.thin_matches`), so the picture keeps about the true share
     of right matches and the number of lines drawn falls when matches fall. With the mutual
-    check on, every match it drops is drawn in grey under the others.
+    check on, every match it drops is drawn in grey dashes under the others.
 
     Returns
     -------
@@ -72,12 +72,10 @@ def feature_matches() -> Demo:
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     # the images stay, only the lines (and the keypoints' visibility) change. Green over red here
-    # (at r near 1 the many red lines would bury the few green ones), and under both, in grey, the
-    # matches the mutual check drops, so the toggle shows what it removes
+    # (at r near 1 the many red lines would bury the few green ones), and under both, in dark grey
+    # dashes without a halo (a seam's style stays the seams'), the matches the mutual check drops
     art["good"].set_zorder(2.2)
-    dropped = LineCollection(
-        [], colors="0.85", linewidths=1.6, path_effects=palette.halo(1.0, "black"), zorder=1.9
-    )
+    dropped = LineCollection([], colors="0.25", linewidths=2.2, linestyles=(0, (5, 2)), zorder=1.9)
     ax.add_collection(dropped)
     view.animate(dropped, art["bad"], art["good"])
     kps = [
@@ -118,7 +116,7 @@ def feature_matches() -> Demo:
         title.set_text(
             f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
             f"of the true H), {nbad} wrong (red)\n{thinned}"
-            + (f"; grey: the {len(m_all.src) - n} it dropped (all drawn)" if v["mutual"] else "")
+            + (f"; grey dashes: the {len(m_all.src) - n} it dropped" if v["mutual"] else "")
             + ("; yellow circles: SIFT keypoints, radius ~ their scale" if v["keypoints"] else "")
         )
         state.update(
@@ -135,7 +133,11 @@ def feature_matches() -> Demo:
             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
             + f"\nlines drawn: {int((good & show).sum())} green, {int((~good & show).sum())} red:\n"
             f"  1 match in {every} (keypoint index divisible by {every})"
-            + (f"\ndropped by the mutual check: {int(gone.sum())} (grey)" if v["mutual"] else "")
+            + (
+                f"\ndropped by the mutual check: {int(gone.sum())} (grey dashes)"
+                if v["mutual"]
+                else ""
+            )
         )
 
     controls = {
