@@ -477,9 +477,12 @@ def _ray_figure() -> SimpleNamespace:
     (f.baseline,) = ax_scene.plot([], [], "-", color="0.1", lw=2.5, label="the baseline B")
     ax_scene.plot(0, 0, "o", mfc="white", mec="0.1", ms=5, ls="none")  # the corner, static
     f.bands = [ax.fill([], [], color=palette.ORANGE, alpha=0.18, lw=0)[0] for _ in range(2)]
-    f.rays = [ax.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
-    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
-    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
+    lift = palette.halo(2.0)  # a white edge: the lines stay readable over the shaded bands
+    f.rays = [
+        ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, path_effects=lift)[0] for _ in range(2)
+    ]
+    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2, path_effects=lift)
+    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1, path_effects=lift)
     ax.plot(
         [], [], "-o", color=palette.ORANGE, lw=1.2, ms=5, label="the two cameras and their rays"
     )
