@@ -481,8 +481,8 @@ def _ray_figure() -> SimpleNamespace:
     f.rays = [
         ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, path_effects=lift)[0] for _ in range(2)
     ]
-    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2, path_effects=lift)
-    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1, path_effects=lift)
+    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2, path_effects=lift, zorder=3)
+    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1, path_effects=lift, zorder=2.9)
     ax.plot(
         [], [], "-o", color=palette.ORANGE, lw=1.2, ms=5, label="the two cameras and their rays"
     )
