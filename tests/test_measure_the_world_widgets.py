@@ -47,6 +47,12 @@ def test_ray_angle_follows_the_two_laws():
         c = 0.332 * pick  # 0.166 mm at 0.5 px (section 3)
         assert abs(demo.state["depth_mm"] - c / np.sin(half)) < 1e-9
         assert abs(demo.state["across_mm"] - c / np.cos(half)) < 1e-9
+    assert abs(demo.state["baseline_mm"] - 2 * 303.0 * np.sin(np.radians(45.0))) < 1e-9
+    demo.set(alpha=40.0, pick=0.1)  # the ellipse, in mm: the picking slider scales it
+    small = demo.figure.axes[1].lines[2].get_xydata()
+    demo.set(alpha=40.0, pick=1.0)
+    large = demo.figure.axes[1].lines[2].get_xydata()
+    assert np.allclose(large, 10 * small)
     demo.set(alpha=5.0, pick=1.0)
     assert (
         demo.state["in_frame"] is False

@@ -110,8 +110,10 @@ def flip_gap(K, R1, t1, R2, t2, X, sigma):
 def _context(K, R1, t1, R2, t2, X, sigma):
     X = np.asarray(X, dtype=float)
 
-    def offsets(K=K, R1=R1, R2=R2):
+    def offsets(K=K, R1=R1, R2=R2, divide=True):
         x1, x2 = ((X @ R.T + t) @ K.T for R, t in ((R1, t1), (R2, t2)))
+        if not divide:  # the homogeneous pixels, never divided by w
+            return x2[:, :2] - x1[:, :2]
         return x2[:, :2] / x2[:, 2:] - x1[:, :2] / x1[:, 2:]
 
     d = offsets()
@@ -134,6 +136,8 @@ def _context(K, R1, t1, R2, t2, X, sigma):
         no_K=np.sqrt(np.sum(offsets(K=np.eye(3)) ** 2)) / 2 / sigma,
         R_T=np.sqrt(np.sum(offsets(R1=R1.T, R2=R2.T) ** 2)) / 2 / sigma,
         probability=0.5 * erfc(gap / sqrt(2)),
+        no_divide=np.sqrt(np.sum(offsets(divide=False) ** 2)) / 2 / sigma,
+        per_corner_noise=whole / 2 / (sqrt(2) * sigma),
     )
 
 
@@ -217,6 +221,18 @@ _MISTAKES = (
         "X (a row) goes to X @ R.T + t.",
     ),
     Mistake(
+        "no divide by w",
+        lambda c: c.no_divide,
+        "you never divided by the third coordinate: K (R X + t) is a homogeneous pixel, w times "
+        "(u, v, 1); divide each by its own w (keepdims) before taking the offsets.",
+    ),
+    Mistake(
+        "noise per corner",
+        lambda c: c.per_corner_noise,
+        "you divided by sqrt(2) sigma, the noise of a corner's 2-D position: sigma is the noise of EACH "
+        "pixel coordinate, and the distance already sums all 2N coordinates, so divide by sigma itself.",
+    ),
+    Mistake(
         "the probability",
         lambda c: c.probability,
         "you returned Phi(-gap), the rule's chance of a flip: the question is the gap itself, in sigma.",
@@ -264,6 +280,8 @@ register_exercise(
             (_variant("no K"), "left out K"),
             (_variant("R.T for R"), "R.T where R belongs"),
             (_variant("the probability"), "Phi(-gap)"),
+            (_variant("no divide by w"), "third coordinate"),
+            (_variant("noise per corner"), "sqrt(2) sigma"),
         ),
         teaching=flip_gap,
         solution_note=(

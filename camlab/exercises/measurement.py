@@ -69,6 +69,10 @@ def _length_context(H, a, b):
         right=dist,
         forward=float(np.linalg.norm(back(H, a) - back(H, b))),
         no_w=float(np.linalg.norm(raw(Hi, a) - raw(Hi, b))),
+        no_w_scaled=float(np.linalg.norm(raw(Hi / Hi[2, 2], a) - raw(Hi / Hi[2, 2], b))),
+        no_w_H_scaled=float(
+            np.linalg.norm(raw(np.linalg.inv(H / H[2, 2]), a) - raw(np.linalg.inv(H / H[2, 2]), b))
+        ),
         transposed=float(np.linalg.norm(right_mult(Hi, a) - right_mult(Hi, b))),
         pixels=float(np.linalg.norm(np.asarray(a) - b)),
         mm=1000 * dist,
@@ -119,6 +123,20 @@ _LENGTH_MISTAKES = (
         lambda c: c.no_w,
         "you forgot to divide by w: H^-1 (u, v, 1) is a homogeneous point (x w, y w, w); the board "
         "point is its first two entries divided by the third.",
+    ),
+    Mistake(
+        "H^-1 scaled, no w",
+        lambda c: c.no_w_scaled,
+        "you scaled H so that its [2, 2] entry is 1 and then skipped the division by w: that fixes "
+        "the scale of the MATRIX, not each point's w, which still varies across the plane (the "
+        "perspective). Divide H^-1 (u, v, 1) by its own third entry for every pixel.",
+    ),
+    Mistake(
+        "H scaled, no w",
+        lambda c: c.no_w_H_scaled,
+        "you scaled H so that its [2, 2] entry is 1 and then skipped the division by w: that fixes "
+        "the scale of the MATRIX, not each point's w, which still varies across the plane (the "
+        "perspective). Divide H^-1 (u, v, 1) by its own third entry for every pixel.",
     ),
     Mistake(
         "transposed",
@@ -244,6 +262,8 @@ register_exercise(
             (_length_variant("pixels"), "in pixels"),
             (_length_variant("forward H"), "board -> image"),
             (_length_variant("no division by w"), "divide by w"),
+            (_length_variant("H^-1 scaled, no w"), "fixes the scale of the MATRIX"),
+            (_length_variant("H scaled, no w"), "fixes the scale of the MATRIX"),
             (_length_variant("transposed"), "rule for LINES"),
             (_length_variant("millimetres"), "1000 times"),
             (_length_variant("centimetres"), "centimetres"),

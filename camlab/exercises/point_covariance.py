@@ -132,10 +132,17 @@ def _context(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u):
         sigma_A_twice=a + J_B @ Sigma_A @ J_B.T + sigma_u**2 * u,
         cross_own=a + b + sigma_u**2 * u + J_A @ Sigma_A @ J_B.T + J_B @ Sigma_B @ J_A.T,
         picks_A_only=a + b + sigma_u**2 * J_u[:, :2] @ J_u[:, :2].T,
+        diagonal_matrix=np.diag(np.diag(a + b + sigma_u**2 * u)),
     )
 
 
 _MISTAKES = (
+    Mistake(
+        "Sigma_X diagonal only",
+        lambda c: c.diagonal_matrix,
+        "you zeroed Sigma_X's off-diagonal terms (np.diag(np.diag(...))): keep the whole (3, 3) sum; its "
+        "off-diagonal terms tilt the ellipsoid, whose long axis lies along the view, not along x, y or z.",
+    ),
     Mistake(
         "J_A for both poses",
         lambda c: c.one_jacobian,
@@ -382,6 +389,7 @@ register_exercise(
             (_variant("sigma_u on the poses"), "pose terms by sigma_u^2"),
             (_variant("diagonal of Sigma only"), "only the diagonal of Sigma_A"),
             (_variant("poses averaged"), "averaged"),
+            (_variant("Sigma_X diagonal only"), "off-diagonal terms tilt"),
             (_variant("picking diagonal"), "only the diagonal of the picking"),
             (_variant("sigma_u halved"), "sigma_u / 2"),
             (_variant("Sigma_A for both"), "photo B's term uses Sigma_A"),

@@ -133,7 +133,14 @@ def _context(K, R, t, X):
         K_rows_over_z=K[:2] / z,
         transposed=_reference(K, R.T, t, X),  # the right formula, R.T used for R throughout
         inverted=_inverted(K, R, t, X),
+        K_transposed=_dpix_transposed(K, Xc),
     )
+
+
+def _dpix_transposed(K, Xc):
+    """d(u, v)/d X_c when the pixel is taken as X_c @ K (K^T X_c): K transposed."""
+    p = K.T @ Xc
+    return (K.T[:2] * p[2] - np.outer(p[:2], K.T[2])) / p[2] ** 2
 
 
 def _dpix(K, Xc):
@@ -236,6 +243,12 @@ _MISTAKES = (
         lambda c: c.with_(-_skew(c.RX), c.no_division),
         "you forgot the perspective division: u = fx x / z + cx, not fx x + cx, so d(u, v)/d X_c = "
         "[[fx/z, 0, -fx x/z^2], [0, fy/z, -fy y/z^2]] (dividing by z also brings the third column).",
+    ),
+    Mistake(
+        "X_c @ K",
+        lambda c: c.with_(-_skew(c.RX), c.K_transposed),
+        "you projected with X_c @ K, which is K^T X_c (K transposed): a point as a row goes to pixels "
+        "by X_c @ K.T, so u = fx x / z + cx and d(u, v)/d X_c = [[fx/z, 0, -fx x/z^2], [0, fy/z, -fy y/z^2]].",
     ),
     Mistake(
         "K rows only",
@@ -422,6 +435,7 @@ register_exercise(
         wrong_variants=(
             (_variant("skew sign"), "wrong sign: [dw]x"),
             (_variant("K rows over z"), "quotient rule"),
+            (_variant("X_c @ K"), "K transposed"),
             (_variant("X for X_c - t"), "world point X"),
             (_variant("X_c for X_c - t"), "used X_c"),
             (_variant("right perturbation"), "on the right"),

@@ -226,7 +226,7 @@ def _figure() -> SimpleNamespace:
     (edge,) = ax_img.plot([], [], "-o", lw=2, ms=4, color=palette.PURPLE)
     (edge_x,) = ax_img.plot([], [], "-s", lw=2, ms=4, color=palette.BROWN)
     ax_plot.set(
-        xlim=(-2, 77),  # room for the dot at 0 and 75 deg
+        xlim=(-2.5, 78),  # room for the rings at 0 and 75 deg
         yscale="log",
         ylim=Y_LIM_MM,
         xlabel="tilt off the board's normal (deg)",
@@ -441,63 +441,84 @@ RAY_MM_PER_PX = 0.332
 
 
 ALPHAS = np.linspace(3.0, 120.0, 118)
-RAY_HALF = (18.0, 30.0)
-"""The ray panel's half-width and half-height, in units of e (one ray's sideways sigma)."""
-BAR_MM = (0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0)
-"""The ray panel's scale-bar lengths (mm): the longest that spans at most 5 e is drawn."""
+RAY_HALF = (3.0, 5.0)
+"""The zoom panel's half-width and half-height at the corner, mm (fixed: the picking slider grows the ellipse)."""
+RAY_RANGE_MM = 303.0
+"""Each camera's distance from the corner in the scene panel, mm (section 3's camera A)."""
 
 
-def _ray_figure() -> SimpleNamespace:
-    """The two rays and their ellipse (left), and the two laws against the angle (right)."""
-    view = FigureView(figsize=(9.0, 5.0))
-    ax, ax_law = view.fig.subplots(1, 2, width_ratios=[1, 1.15])
-    # in units of e, one ray's sideways sigma: the picking slider changes only the mm scale bar
+def _ray_axes(view) -> tuple:
+    """The scene to scale (left), the zoom at the corner in mm (middle), the two laws (right)."""
+    ax_scene, ax, ax_law = view.fig.subplots(1, 3, width_ratios=[0.95, 0.75, 1.15])
+    ax_scene.set(xlim=(-290, 290), ylim=(-40, 340), aspect="equal")
+    ax_scene.set_xlabel("across (mm)", fontsize=8)
+    ax_scene.set_ylabel("along the bisector (mm)", fontsize=8)
     ax.set(xlim=(-RAY_HALF[0], RAY_HALF[0]), ylim=(-RAY_HALF[1], RAY_HALF[1]), aspect="equal")
-    ax.set_xlabel("across, in the rays' plane (units of e)", fontsize=8)
-    ax.set_ylabel("depth, along the bisector (units of e; cameras above)", fontsize=8)
+    ax.set_xlabel("across, in the rays' plane (mm)", fontsize=8)
+    ax.set_ylabel("depth, along the bisector (mm; cameras above)", fontsize=8)
     ax_law.set(xlim=(0, 124), ylim=(0.02, 20), yscale="log")  # room for the ring at 120 deg
     ax_law.set_xlabel("angle α between the rays (deg)", fontsize=8)
     ax_law.set_ylabel("one σ of the point (mm, log scale)", fontsize=8)
     ax_law.yaxis.set_major_formatter(FuncFormatter(lambda y, _: f"{y:g}"))
-    ax_law.set_title(" ", fontsize=9)  # c, set by update
-    for a in (ax, ax_law):
+    for a in (ax_scene, ax, ax_law):
         a.tick_params(labelsize=7)
         a.grid(alpha=0.3)
-    f = SimpleNamespace(view=view, ax=ax)
-    f.rays = [ax.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
-    f.bands = [ax.plot([], [], ":", color=palette.ORANGE, lw=1)[0] for _ in range(4)]
-    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2)
-    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1)
-    (f.bar,) = ax.plot([], [], "-", color="0.1", lw=3, solid_capstyle="butt")  # 1 mm in units of e
-    f.bar_text = ax.text(
-        0, 0, "1 mm", fontsize=8, ha="left", va="bottom", color="0.1", path_effects=palette.halo(2)
+        a.set_title(" ", fontsize=9)  # set by update
+    return ax_scene, ax, ax_law
+
+
+def _ray_figure() -> SimpleNamespace:
+    """The cameras to scale, the two rays and their ellipse at the corner, and the two laws."""
+    view = FigureView(figsize=(10.0, 4.9))
+    ax_scene, ax, ax_law = _ray_axes(view)
+    f = SimpleNamespace(view=view, ax=ax, ax_law=ax_law, ax_scene=ax_scene)
+    f.scene_rays = [ax_scene.plot([], [], "-", color=palette.ORANGE, lw=1.2)[0] for _ in range(2)]
+    (f.cameras,) = ax_scene.plot([], [], "o", color=palette.ORANGE, ms=7, ls="none")
+    (f.baseline,) = ax_scene.plot([], [], "-", color="0.1", lw=2.5, label="the baseline B")
+    ax_scene.plot(0, 0, "o", mfc="white", mec="0.1", ms=5, ls="none")  # the corner, static
+    f.bands = [ax.fill([], [], color=palette.ORANGE, alpha=0.18, lw=0)[0] for _ in range(2)]
+    lift = palette.halo(2.0)  # a white edge: the lines stay readable over the shaded bands
+    f.rays = [
+        ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, path_effects=lift)[0] for _ in range(2)
+    ]
+    (f.ellipse,) = ax.plot([], [], "-", color=palette.BLUE, lw=2, path_effects=lift, zorder=3)
+    (f.axes_,) = ax.plot([], [], "-", color=palette.BLUE, lw=1, path_effects=lift, zorder=2.9)
+    ax.plot(
+        [], [], "-o", color=palette.ORANGE, lw=1.2, ms=5, label="the two cameras and their rays"
     )
-    ax.plot([], [], "-", color=palette.ORANGE, lw=1.2, label="the two rays (from the cameras)")
-    ax.plot([], [], ":", color=palette.ORANGE, lw=1, label="± one sigma e of each ray")
+    ax.fill([], [], color=palette.ORANGE, alpha=0.18, lw=0, label="± e about each ray (one σ)")
     ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
     (f.law_depth,) = ax_law.plot([], [], "-", color="0.1", lw=1.5, label="σ depth = c / sin(α/2)")
     (f.law_across,) = ax_law.plot(
         [], [], "--", color="0.1", lw=1.5, label="σ across = c / cos(α/2)"
     )
     (f.here,) = ax_law.plot([], [], "o", mfc="none", mec="0.1", mew=1.5, ms=7, label="this α")
-    handles = ax.get_legend_handles_labels()[0] + ax_law.get_legend_handles_labels()[0]
-    view.fig.legend(handles=handles, loc="outside lower center", ncols=3, fontsize=7)
-    ax.set_title(" ", fontsize=9)
-    view.animate(
-        *f.rays,
-        *f.bands,
-        f.ellipse,
-        f.axes_,
-        f.bar,
-        f.bar_text,
-        ax.title,
-        f.law_depth,
-        f.law_across,
-        f.here,
-    )
-    view.animate(ax_law.title)
-    f.ax_law = ax_law
+    handles = sum((a.get_legend_handles_labels()[0] for a in (ax_scene, ax, ax_law)), [])
+    view.fig.legend(handles=handles, loc="outside lower center", ncols=4, fontsize=7)
+    view.animate(*f.scene_rays, f.cameras, f.baseline, ax_scene.title)
+    view.animate(*f.bands, *f.rays, f.ellipse, f.axes_, ax.title)
+    view.animate(f.law_depth, f.law_across, f.here, ax_law.title)
     return f
+
+
+def _draw_rays(fig: SimpleNamespace, half: float, e: float) -> None:
+    """Both rays at +-half from the bisector: to scale in the scene, with their +-e bands at the corner."""
+    ends = []
+    for sign, ray, band, scene_ray in zip(
+        (-1, 1), fig.rays, fig.bands, fig.scene_rays, strict=True
+    ):
+        d = np.array([sign * np.sin(half), np.cos(half)])  # toward its camera, above the corner
+        n = np.array([d[1], -d[0]])
+        ray.set_data(*np.outer([-60, 60], d).T)  # mm, far past the zoom's frame
+        band.set_xy(np.array([-60 * d - e * n, 60 * d - e * n, 60 * d + e * n, -60 * d + e * n]))
+        ends.append(RAY_RANGE_MM * d)
+        scene_ray.set_data(*np.array([-0.1 * RAY_RANGE_MM * d, ends[-1]]).T)
+    fig.cameras.set_data(*np.array(ends).T)
+    fig.baseline.set_data(*np.array(ends).T)
+    baseline = 2 * RAY_RANGE_MM * np.sin(half)
+    fig.ax_scene.title.set_text(
+        f"to scale: baseline B = {baseline:.0f} mm,\ncameras {RAY_RANGE_MM:.0f} mm from the corner"
+    )
 
 
 @register(lesson="12", sweep={"alpha": [5.0, 40.0, 120.0], "pick": [0.1, 1.0]})
@@ -508,62 +529,58 @@ def ray_angle() -> Demo:
     :math:`x = (e_1 + e_2) / (2\cos(\alpha/2))` across and :math:`y = (e_2 - e_1) / (2\sin(\alpha/2))`
     along the bisector (depth), so :math:`\sigma_\text{depth} = e / (\sqrt2 \sin(\alpha/2))` and
     :math:`\sigma_\text{across} = e / (\sqrt2 \cos(\alpha/2))`; :math:`e/\sqrt2` is section 3's
-    0.166 mm at 0.5 px picking (:data:`RAY_MM_PER_PX` per pixel of picking).
+    0.166 mm at 0.5 px picking (:data:`RAY_MM_PER_PX` per pixel of picking). The left panel draws
+    the two cameras to scale, :data:`RAY_RANGE_MM` from the corner; the middle one zooms on the
+    corner in fixed millimetres, so the picking slider grows the ellipse and the bands.
 
     Returns
     -------
     Demo
         Controls ``alpha`` (the angle between the rays, degrees) and ``pick`` (picking sigma, px);
-        ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma), ``in_frame`` and the scale bar's
-        length ``bar_mm``.
+        ``state`` holds ``depth_mm`` and ``across_mm`` (one sigma), ``in_frame`` and the
+        baseline ``baseline_mm`` of the scene panel.
     """
     fig = _ray_figure()
     readout = W.HTML()
     ring = np.linspace(0, 2 * np.pi, 181)
     k95 = np.sqrt(5.991)  # chi^2 with 2 degrees of freedom, 95 %: the 2-D ellipse, not 1.96
-    rays, bands, ax, ax_law = fig.rays, fig.bands, fig.ax, fig.ax_law
+    ax, ax_law = fig.ax, fig.ax_law
 
     def update(v, state):
         half = np.radians(v["alpha"]) / 2
-        e = np.sqrt(2) * RAY_MM_PER_PX * v["pick"]  # one ray's sideways sigma, mm
-        depth, across = e / (np.sqrt(2) * np.sin(half)), e / (np.sqrt(2) * np.cos(half))
-        for sign, ray, pair in ((-1, rays[0], bands[:2]), (1, rays[1], bands[2:])):
-            d = np.array([sign * np.sin(half), np.cos(half)])  # toward its camera, above the corner
-            n = np.array([d[1], -d[0]])
-            ray.set_data(*np.outer([-60, 60], d).T)  # the panel is in units of e
-            for s, band in zip((-1, 1), pair, strict=True):
-                band.set_data(*(np.outer([-60, 60], d) + s * n).T)
-        fig.ellipse.set_data(k95 * across / e * np.cos(ring), k95 * depth / e * np.sin(ring))
-        # the scale bar, left of the corner where no ray passes: 0.2, 1 or 2 mm, whichever spans at most 5 e
-        bar_mm = max(b for b in BAR_MM if b / e <= 5.0)
-        x0, y0 = -RAY_HALF[0] + 1.5, -3.0
-        fig.bar.set_data([x0, x0 + bar_mm / e], [y0, y0])
-        fig.bar_text.set_position((x0, y0 + 0.8))
-        fig.bar_text.set_text(f"{bar_mm:g} mm")
-        c = RAY_MM_PER_PX * v["pick"]
+        c = RAY_MM_PER_PX * v["pick"]  # e / sqrt 2, mm
+        e = np.sqrt(2) * c  # one ray's sideways sigma, mm
+        depth, across = c / np.sin(half), c / np.cos(half)
+        _draw_rays(fig, half, e)
+        fig.ellipse.set_data(k95 * across * np.cos(ring), k95 * depth * np.sin(ring))
+        fig.axes_.set_data(
+            np.array([-across, across, np.nan, 0, 0]) * k95,
+            np.array([0, 0, np.nan, -depth, depth]) * k95,
+        )
         fig.law_depth.set_data(ALPHAS, c / np.sin(np.radians(ALPHAS) / 2))
         fig.law_across.set_data(ALPHAS, c / np.cos(np.radians(ALPHAS) / 2))
         fig.here.set_data([v["alpha"]] * 2, [depth, across])
-        fig.axes_.set_data(
-            np.array([-across, across, np.nan, 0, 0]) * k95 / e,
-            np.array([0, 0, np.nan, -depth, depth]) * k95 / e,
-        )
-        ax.title.set_text(f"α = {v['alpha']:.0f}°, picks to {v['pick']:.2f} px: e = {e:.3f} mm")
+        ax.title.set_text(f"at the corner: α = {v['alpha']:.0f}°, e = {e:.3f} mm")
         ax_law.title.set_text(f"the two laws, c = {c:.3f} mm at {v['pick']:.2f} px picks")
-        in_frame = bool(k95 * depth / e <= RAY_HALF[1] and k95 * across / e <= RAY_HALF[0])
-        state.update(depth_mm=depth, across_mm=across, in_frame=in_frame, bar_mm=bar_mm)
+        in_frame = bool(k95 * depth <= RAY_HALF[1] and k95 * across <= RAY_HALF[0])
+        state.update(
+            depth_mm=depth,
+            across_mm=across,
+            in_frame=in_frame,
+            baseline_mm=2 * RAY_RANGE_MM * np.sin(half),
+        )
         readout.value = monospace(
             f"σ depth  = {c:.3f} mm / sin(α/2) = {depth:6.3f} mm  (ellipse half-axis {k95 * depth:5.2f} mm)\n"
             f"σ across = {c:.3f} mm / cos(α/2) = {across:6.3f} mm  (ellipse half-axis {k95 * across:5.2f} mm)\n"
             "the 95 % ellipse reaches 2.45 σ along each axis (2-D: √χ²₂(0.95) = √5.991);\n"
             f"one coordinate alone lies within ± 1.96 σ 95 % of the time (depth ± {1.96 * depth:.2f} mm)\n"
             f"depth / across = cot(α/2) = {depth / across:.2f}\n"
-            f"{c:.3f} mm = e/√2: a pick off by {v['pick']:.2f} px moves each ray {np.sqrt(2) * c:.3f} mm sideways "
-            "at section 3's corner, 303 mm from its camera"
+            f"{c:.3f} mm = e/√2: a pick off by {v['pick']:.2f} px moves each ray {e:.3f} mm sideways "
+            f"at section 3's corner, {RAY_RANGE_MM:.0f} mm from its camera"
             + (
                 ""
                 if in_frame
-                else "\nthe ellipse runs past the frame: the rays are nearly parallel"
+                else "\nthe ellipse runs past the zoom's frame: the rays are nearly parallel"
             )
         )
 
