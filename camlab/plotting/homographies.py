@@ -16,7 +16,14 @@ from camlab.projective import map_points
 
 from . import palette
 
-__all__ = ["draw_fit_comparison", "draw_hypotheses", "draw_verdicts", "torn_outline"]
+__all__ = [
+    "draw_error_histograms",
+    "draw_fit_comparison",
+    "draw_hypotheses",
+    "draw_overlay",
+    "draw_verdicts",
+    "torn_outline",
+]
 
 _CORNERS = ("TL", "TR", "BR", "BL")
 _LABEL_OFFSET = {"TL": (-12, -8), "TR": (12, -8), "BL": (12, 8), "BR": (10, 0)}
@@ -432,4 +439,119 @@ def draw_verdicts(
         )
     ax_h.set(xscale="log", xlabel="error $e_i$ under the 3 px H (pixels)", ylabel="pairs")
     ax_h.set_title("each pair's error", fontsize=10)
+    return fig
+
+
+def draw_overlay(
+    overlay, crops, title, side=None, side_title="", brighten=False, mark_u=None, crop=(80, 60)
+):
+    """A red-cyan overlay of two registered photos, with crops of it enlarged.
+
+    Parameters
+    ----------
+    overlay : (H, W, 3) uint8 ndarray
+        The first photo in red, the second warped into its frame in cyan (grey where they agree).
+    crops : dict
+        Name -> (u, v) of a crop's top-left pixel; each is boxed in yellow and enlarged.
+    title : str
+        The overlay's title.
+    side : (H, W) ndarray, optional
+        A grey-level photo drawn beside the overlay (the second photo as taken); then the
+        crops go in a row below, else beside the overlay.
+    side_title : str
+        Its title.
+    brighten : bool
+        Draw the overlay at half contrast, lifted (``overlay // 2 + 110``), so the grey of a dark
+        photo reads; the crops stay as they are.
+    mark_u : float, optional
+        A column marked by a dotted line on the overlay (where a region starts).
+    crop : tuple of int
+        The crops' (width, height) in pixels.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Axes in order: the side photo (if any), the overlay, then one per crop.
+    """
+    w, h = crop
+    if side is not None:
+        fig = plt.figure(figsize=(10, 6.6), layout="constrained")
+        top, bottom = fig.subfigures(2, 1, height_ratios=[1.35, 1])
+        ax_side, ax_o = top.subplots(1, 2)
+        ax_side.imshow(side, cmap="gray", vmin=0, vmax=255)
+        ax_side.set_title(side_title, fontsize=10)
+        ax_side.set(xlabel="u (pixels)", ylabel="v (pixels)")
+        zooms = np.atleast_1d(bottom.subplots(1, len(crops)))
+    else:
+        fig = plt.figure(figsize=(10, 3.9), layout="constrained")
+        ax_o, *zooms = fig.subplots(1, 1 + len(crops), width_ratios=[1.5] + [1] * len(crops))
+    ax_o.imshow(overlay // 2 + 110 if brighten else overlay)
+    ax_o.set_title(title, fontsize=10)
+    if mark_u is not None:
+        ax_o.axvline(mark_u, color="k", ls=":", lw=1.2, path_effects=palette.halo(1.2))
+    for ax, (name, (u0, v0)) in zip(zooms, crops.items(), strict=True):
+        ax_o.add_patch(
+            plt.Rectangle((u0 - 0.5, v0 - 0.5), w, h, fill=False, ec=palette.YELLOW, lw=1.5)
+        )
+        ax_o.annotate(
+            name,
+            (u0 + w / 2, v0 - 4),
+            ha="center",
+            va="bottom",
+            fontsize=8,
+            color="k",
+            path_effects=palette.halo(),
+        )
+        ax.imshow(
+            overlay[v0 : v0 + h, u0 : u0 + w],
+            extent=(u0 - 0.5, u0 + w - 0.5, v0 + h - 0.5, v0 - 0.5),
+            interpolation="nearest",
+        )
+        ax.set_title(f"{name}, zoomed", fontsize=10)
+    for ax in (ax_o, *zooms):
+        ax.set(xlabel="u (pixels)", ylabel="v (pixels)")
+    return fig
+
+
+def draw_error_histograms(errors, threshold: float = 3.0, title=""):
+    """Normalised histograms of e_i for several photo pairs on one log axis.
+
+    Parameters
+    ----------
+    errors : dict
+        Label -> (N,) ndarray of e_i (pixels), clipped to 0.1 to 30 px for the plot. The first is
+        drawn as a black outline, the second as filled grey bars.
+    threshold : float
+        The threshold marked by a dotted line (pixels).
+    title : str
+        The axes' title.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One axes: the fraction of each pair's pairs per bin (26 bins, equal widths on the log axis).
+    """
+    fig, ax = plt.subplots(figsize=(5.6, 3.4), layout="constrained")
+    bins = np.geomspace(0.1, 30, 26)
+    styles = (dict(histtype="step", color="k", lw=2), dict(color=palette.GREY, alpha=0.8))
+    for (label, e), style in zip(errors.items(), styles, strict=False):
+        e = np.clip(e, 0.1, 30)
+        ax.hist(
+            e, bins=bins, weights=np.full(len(e), 1 / len(e)), label=f"{label} ({len(e)})", **style
+        )
+    ax.set_ylim(0, 1.3 * ax.get_ylim()[1])  # room above the bars for the key and the label
+    ax.axvline(threshold, color="0.2", ls=":", lw=1)
+    ax.annotate(
+        f"{threshold:g} px",
+        (threshold, 1),
+        xycoords=("data", "axes fraction"),
+        xytext=(3, -12),
+        textcoords="offset points",
+        fontsize=8,
+    )
+    ax.set(
+        xscale="log", xlabel="error $e_i$ under the 3 px H (pixels)", ylabel="fraction of the pairs"
+    )
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=8, loc="upper left")
     return fig
