@@ -17,10 +17,13 @@ from camlab.projective import map_points
 from . import palette
 
 __all__ = [
+    "DEPTH_LOOKS",
     "draw_error_histograms",
     "draw_fit_comparison",
     "draw_hypotheses",
     "draw_overlay",
+    "draw_parallax",
+    "draw_plan_view",
     "draw_verdicts",
     "torn_outline",
 ]
@@ -554,4 +557,185 @@ def draw_error_histograms(errors, threshold: float = 3.0, title=""):
     )
     ax.set_title(title, fontsize=10)
     ax.legend(fontsize=8, loc="upper left")
+    return fig
+
+
+DEPTH_LOOKS = {
+    "in front, Z = 1.5 m": ("o", palette.MAGENTA, 9),
+    "on the plane, Z = 3 m": ("s", "k", 5.5),
+    "behind, Z = 6 m": ("D", palette.OLIVE, 6),
+}
+"""Lesson 07's section 9: marker, colour and size of the points in front of, on and behind the plane
+(magenta and olive appear nowhere else in the lesson)."""
+
+
+def draw_plan_view(ray, depths, centre_2, axis_2, far=7.2):
+    """Two cameras, the plane Z = 3 m and one ray of camera 1 with its points, seen from above.
+
+    Parameters
+    ----------
+    ray : (3,) ndarray
+        A ray of camera 1 (camera 1's frame; its point at depth Z is ``ray * Z`` with ``ray[2] = 1``).
+    depths : dict
+        Label (a key of :data:`DEPTH_LOOKS`) -> depth Z in metres.
+    centre_2, axis_2 : (3,) ndarray
+        Camera 2's centre and optical axis in camera 1's frame (metres).
+    far : float
+        The depth to which rays are drawn (metres).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The plan (Z across, X down the page): camera 2's ray to each point, extended dotted.
+    """
+    plan = lambda P: np.asarray(P, float).reshape(-1, 3)[:, [2, 0]]  # noqa: E731 - from above: (Z, X)
+    fig, ax = plt.subplots(figsize=(10, 3.6), layout="constrained")
+    ax.axvline(3.0, color="0.6", lw=4, alpha=0.5, zorder=0)
+    ax.annotate(
+        "the plane Z = 3 m (edge on)",
+        (3.0, -1.5),
+        xytext=(6, 0),
+        textcoords="offset points",
+        fontsize=9,
+        va="center",
+    )
+    ax.plot(
+        *plan([np.zeros(3), ray * far]).T,
+        "--",
+        color="k",
+        lw=1.2,
+        label="the ray of camera 1 through pixel $x_1$",
+    )
+    for name, Z in depths.items():
+        P = ray * Z
+        marker, colour, size = DEPTH_LOOKS[name]
+        beyond = centre_2 + (P - centre_2) * (far - centre_2[2]) / (
+            P[2] - centre_2[2]
+        )  # camera 2's ray, on to `far`
+        ax.plot(*plan([centre_2, P]).T, "-", color=colour, lw=1.4)
+        ax.plot(*plan([P, beyond]).T, ":", color=colour, lw=1.4)
+        ax.plot(
+            *plan(P).T,
+            marker,
+            ms=size,
+            color=colour,
+            mec="k",
+            mew=0.6,
+            ls="none",
+            label=f"{name}, and camera 2's ray to it",
+        )
+    for C, axis, name in (
+        (np.zeros(3), np.array([0, 0, 1.0]), "camera 1"),
+        (centre_2, axis_2, "camera 2"),
+    ):
+        first = name == "camera 1"
+        ax.annotate(
+            "",
+            plan(C + 0.5 * axis)[0],
+            plan(C)[0],
+            arrowprops=dict(arrowstyle="-|>", color="0.2", lw=1.2),
+        )
+        ax.plot(*plan(C).T, "^" if first else "v", ms=9, color="0.2", ls="none")
+        ax.annotate(
+            name,
+            plan(C)[0],
+            xytext=(0, -16) if first else (-8, 6),
+            textcoords="offset points",
+            fontsize=9,
+            ha="center" if first else "right",
+        )
+    ax.annotate(
+        "H sends $x_1$ to camera 2's image\nof the plane's point on the ray",
+        plan(ray * 3.0)[0],
+        xytext=(-40, 30),
+        textcoords="offset points",
+        fontsize=8,
+        ha="right",
+        arrowprops=dict(arrowstyle="-", color="0.3", lw=0.8),
+    )
+    ax.set(
+        xlabel="Z, depth in camera 1 (m)",
+        ylabel="X (m; seen from above, +X down the page)",
+        aspect="equal",
+        xlim=(-0.75, far + 0.2),
+        ylim=(0.6, -1.65),
+    )
+    ax.legend(loc="lower right", fontsize=8)
+    ax.set_title(
+        "seen from above: camera 1's ray, its three points, and camera 2's rays to them",
+        fontsize=10,
+    )
+    return fig
+
+
+def draw_parallax(predicted, seen, titles, size=(640, 480)):
+    """Where H sends camera 1's pixels (rings) and where camera 2 sees the points at each depth.
+
+    Parameters
+    ----------
+    predicted : dict
+        Panel name -> (N, 2) ndarray: H x1 for each ray (pixels).
+    seen : dict
+        (panel name, depth label) -> (N, 2) ndarray: where camera 2 sees the ray's point at that
+        depth (pixels); the labels are keys of :data:`DEPTH_LOOKS`.
+    titles : dict
+        Panel name -> its title. A panel whose name is ``"only turns"`` nests its coinciding marks.
+    size : tuple of int
+        Camera 2's image (width, height), drawn dotted.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One panel per entry of ``predicted``; each point joined to its ring by a line (the parallax).
+    """
+    fig, axes = plt.subplots(1, len(predicted), figsize=(10, 4.7), sharey=True)
+    fig.subplots_adjust(
+        left=0.07, right=0.99, top=0.93, bottom=0.26, wspace=0.06
+    )  # room for the titles and the legend
+    nested = {
+        "in front, Z = 1.5 m": 11,
+        "on the plane, Z = 3 m": 7,
+        "behind, Z = 6 m": 4,
+    }  # coinciding: all visible
+    for ax, (which, rings) in zip(axes, predicted.items(), strict=True):
+        ax.plot(
+            *rings.T,
+            "o",
+            ms=14,
+            mfc="none",
+            mec=palette.GREY,
+            mew=1.5,
+            label="H x: camera 1's pixel, mapped by H",
+        )
+        for name, (marker, colour, ms) in DEPTH_LOOKS.items():
+            where = seen[(which, name)]
+            for p, q in zip(rings, where, strict=True):  # the parallax: from H x to the point seen
+                ax.plot([p[0], q[0]], [p[1], q[1]], "-", color=colour, lw=1.2)
+            ax.plot(
+                *where.T,
+                marker,
+                ms=nested[name] if which == "only turns" else ms,
+                color=colour,
+                mec="k",
+                mew=0.6,
+                ls="none",
+                label=f"seen by camera 2: {name}",
+            )
+        ax.add_patch(
+            plt.Rectangle(
+                (-0.5, -0.5),
+                *size,
+                fill=False,
+                ec="0.6",
+                lw=1,
+                ls=":",
+                label=f"camera 2's {size[0]} x {size[1]} image",
+            )
+        )
+        ax.set(
+            xlabel="u (pixels)", aspect="equal", xlim=(-20, size[0] + 20), ylim=(size[1] + 20, -20)
+        )
+        ax.set_title(titles[which], fontsize=10)
+    axes[0].set_ylabel("v (pixels)")
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="lower center", ncol=2, fontsize=8)
     return fig
