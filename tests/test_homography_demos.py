@@ -329,7 +329,7 @@ def test_plane_parallax_demo_is_zero_on_the_plane_and_for_a_turning_camera():
     )  # points leave the image: the medians count the rays in view at every depth
     assert d.state["outside"][1.5] == 6 and d.state["outside"][3.0] == 0 and d.state["common"] <= 6
     readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
-    assert "6 of 12 outside the image" in readouts[0]
+    assert "6 of 12 rays left out (point or ring outside)" in readouts[0]
     assert f"over the {d.state['common']} rays in view at all three depths" in readouts[0]
 
 

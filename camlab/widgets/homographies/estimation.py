@@ -303,9 +303,10 @@ HOLE_COLOUR = tuple(round(255 * c) for c in to_rgb(palette.HOLE))
 does not contain, so holes never read as its dark border (outside the picture both panels are a mid
 grey, OUTSIDE_GREY)."""
 OUTSIDE_GREY = 128
-ZOOM = (80, 108, 18, 24)
-"""The zoomed window of the forward warp: (top row, left column, height, width) in output pixels,
-over the house's roof at the default setting, where each landing spot shows as one square."""
+ZOOM = (108, 110, 18, 24)
+"""The zoomed window of both warps: (top row, left column, height, width) in output pixels, on the
+door's edge against the wall at the default setting (and at the sweep's scales and angles), so the
+inverse crop shows an edge kept whole and the forward crop the same edge broken by holes."""
 
 
 def _painted(fwd, inv, inside, reached, pulled):

@@ -191,7 +191,7 @@ def plane_parallax() -> Demo:
         lines = [f"plane Z = {v['plane']:g} m; median parallax |x2 - H x1| {over}:"]
         lines += [
             f"  Z = {Z:>3g} m: {p:6.1f} px   (|1/Z - 1/d| = {abs(1 / Z - 1 / v['plane']):.3f} /m)"
-            + (f"  {hidden[Z]} of 12 outside the image" if hidden[Z] else "")
+            + (f"  {hidden[Z]} of 12 rays left out (point or ring outside)" if hidden[Z] else "")
             for Z, p in parallax.items()
         ]
         readout.value = monospace("\n".join(lines))
