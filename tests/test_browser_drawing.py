@@ -36,6 +36,7 @@ BROWSER_DEMOS = {
     "conic_under_homography": "ellipse",
     "epipolar_lines": "epipolar",
     "transformation_hierarchy": "similarity",
+    "forward_vs_inverse": "holes",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 

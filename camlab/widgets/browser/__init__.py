@@ -60,6 +60,7 @@ MODULES = (
     "epipolar.js",
     "homography.js",
     "hierarchy.js",
+    "forward_inverse.js",
     "widget.js",
 )
 """The ES modules, in dependency order, joined into the one module anywidget loads."""

@@ -281,3 +281,20 @@ export function pixelsToData(toPixels, box, [u, v]) {
 export function onSlider(value, r) {
   return Math.round(Math.min(r.max, Math.max(r.min, value)) / r.step) * r.step;
 }
+
+// An RGBA image (rows from the top) drawn at canvas box {left, top, width, height}, unsmoothed:
+// pixel for pixel on a canvas at the figure's size, each pixel a block on a denser screen. `holder`
+// keeps its offscreen canvas between draws.
+export function putPixels(ctx, holder, data, width, height, box) {
+  if (!holder.canvas || holder.canvas.width !== width || holder.canvas.height !== height) {
+    holder.canvas = document.createElement("canvas");
+    holder.canvas.width = width;
+    holder.canvas.height = height;
+    holder.ctx = holder.canvas.getContext("2d");
+  }
+  holder.ctx.putImageData(new ImageData(data, width, height), 0, 0);
+  ctx.save();
+  ctx.imageSmoothingEnabled = false;
+  ctx.drawImage(holder.canvas, 0, 0, width, height, box.left, box.top, box.width, box.height);
+  ctx.restore();
+}

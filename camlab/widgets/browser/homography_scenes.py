@@ -18,7 +18,15 @@ from . import canvas_height, line_style, marker_style, text_lines, text_style
 from .plane_scenes import boxed_text_scene
 from .scenes import plane_panel, spine_lines
 
-__all__ = ["haloed_line_style", "hierarchy_scene", "image_box", "picture_data"]
+__all__ = [
+    "forward_inverse_scene",
+    "haloed_line_style",
+    "hierarchy_scene",
+    "image_box",
+    "image_place",
+    "patch_outline",
+    "picture_data",
+]
 
 
 def haloed_line_style(line: Any, px_per_point: float) -> dict:
@@ -105,6 +113,126 @@ def image_box(image: Any) -> dict:
     bottom, top = round(min(v0, v1)), round(max(v0, v1))
     return dict(
         left=left, top=canvas_height(image.figure) - top, width=right - left, height=top - bottom
+    )
+
+
+def image_place(image: Any) -> dict:
+    """Where the live canvas puts a pixelated image: its rounded box and its unrounded edges.
+
+    ``homography.js``'s ``liveImage`` repeats what ``widgets/_transport.py`` does with an image
+    shown with ``interpolation="nearest"``: kept at most at its box's size (OpenCV's nearest shrink),
+    then, where the box is larger, each canvas pixel takes the data pixel under its centre, found
+    from the extent's unrounded edges (``_nearest_at_centres``). For an image with row 0 at the top
+    and columns left to right (``imshow``'s default), inside its axes.
+
+    Parameters
+    ----------
+    image : matplotlib.image.AxesImage
+        The image, after the figure's layout is fixed.
+
+    Returns
+    -------
+    dict
+        ``box`` (:func:`image_box`), ``us`` and ``vs`` (the extent's edges in display px, left and
+        right, bottom and top: y up) and ``canvasHeight`` (the rows y is flipped about).
+    """
+    x0, x1, y0, y1 = image.get_extent()
+    row0_y = y1 if image.origin == "upper" else y0
+    (u_left, v_row0), (u_right, v_rown) = image.get_transform().transform(
+        [(x0, row0_y), (x1, y0 + y1 - row0_y)]
+    )
+    return dict(
+        box=image_box(image),
+        us=sorted((float(u_left), float(u_right))),
+        vs=sorted((float(v_row0), float(v_rown))),
+        canvasHeight=canvas_height(image.figure),
+    )
+
+
+def patch_outline(patch: Any) -> dict:
+    """An unfilled patch's outline as a closed canvas polyline with its look (``drawing.js``'s ``polyline``).
+
+    Parameters
+    ----------
+    patch : matplotlib.patches.Patch
+        The patch (a rectangle's frame), after the figure's layout is fixed.
+
+    Returns
+    -------
+    dict
+        ``points`` (its path's vertices, canvas px) and ``style`` (colour, width, joins, caps;
+        closed, snapped as matplotlib snaps it).
+    """
+    fig = patch.figure
+    xy = patch.get_transform().transform_path(patch.get_path()).vertices
+    caps = {"butt": "butt", "round": "round", "projecting": "square"}
+    return dict(
+        points=np.column_stack([xy[:, 0], canvas_height(fig) - xy[:, 1]]).tolist(),
+        style=dict(
+            color=to_hex(patch.get_edgecolor()),
+            width=patch.get_linewidth() * fig.dpi / 72.0,
+            dash=[],
+            join=patch.get_joinstyle(),
+            cap=caps[patch.get_capstyle()],
+            snap=patch.get_snap() is not False,
+            closed=True,
+        ),
+    )
+
+
+def forward_inverse_scene(
+    images: Mapping[str, Any], frames: Any, picture: np.ndarray, fixed: Mapping[str, Any]
+) -> dict:
+    """What ``forward_inverse.js`` needs to draw lesson 07's ``forward_vs_inverse`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    images : mapping
+        The four animated images by name: ``forward``, ``forward_zoom``, ``inverse_zoom``,
+        ``inverse`` (the zoomed ones with their window's extent).
+    frames : sequence of matplotlib.patches.Rectangle
+        The yellow frames of the zoomed window, over the forward and the inverse warp.
+    picture : (h, w, 3) uint8 ndarray
+        The picture the browser warps.
+    fixed : mapping
+        :func:`~camlab.widgets.homographies.twins.forward_inverse_fixed`'s constants.
+
+    Returns
+    -------
+    dict
+        The scene (JSON): the picture, the constants (with the holes' colour and the grey outside),
+        the zoomed window (top, left, height, width: output px) and, per panel in the order a full
+        draw paints them, its image's name and place, its frames and its spines.
+    """
+    zoom = images["forward_zoom"]
+    x0, x1, y0, y1 = zoom.get_extent()  # (left - 0.5, left + w - 0.5, top + h - 0.5, top - 0.5)
+    window = [round(y1 + 0.5), round(x0 + 0.5), round(y0 - y1), round(x1 - x0)]
+    panels = []
+    for name, image in images.items():
+        ax = image.axes
+        panels.append(
+            dict(
+                image=name,
+                place=image_place(image),
+                frames=[patch_outline(f) for f in frames if f.axes is ax],
+                spines=spine_lines(ax),
+                order=image.figure.axes.index(ax),
+            )
+        )
+    panels.sort(key=lambda p: p["order"])
+    return dict(
+        picture=picture_data(picture),
+        fixed=dict(
+            C=np.asarray(fixed["C"], float).tolist(),
+            P=np.asarray(fixed["P"], float).tolist(),
+            tilt=np.asarray(fixed["tilt"], float).tolist(),
+            edges=np.asarray(fixed["edges"], float).tolist(),
+            shape=[int(c) for c in fixed["shape"]],
+            hole=[int(c) for c in fixed["hole"]],
+            outside=int(fixed["outside"]),
+        ),
+        zoom=window,
+        panels=panels,
     )
 
 

@@ -6,6 +6,7 @@ import { drawThreeCameras } from "./three_cameras.js";
 import { drawDollyZoom } from "./dolly_zoom.js";
 import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
 import { drawHierarchy } from "./hierarchy.js";
+import { drawForwardInverse } from "./forward_inverse.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
@@ -23,6 +24,7 @@ const SCENES = {
   conic_under_homography: { draw: drawConic },
   epipolar_lines: { draw: drawEpipolarLines, drag: dragEpipolarLines },
   transformation_hierarchy: { draw: drawHierarchy },
+  forward_vs_inverse: { draw: drawForwardInverse },
 };
 
 // A press, and a move with the button held, on the canvas set the parameters the demo's drag names.
