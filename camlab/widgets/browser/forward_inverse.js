@@ -1,4 +1,4 @@
-import { cropPixels, forwardInverseView, liveImage } from "./homography.js";
+import { cropPixels, forwardInverseView, liveImage, pictureFrom } from "./homography.js";
 import { polyline, putPixels } from "./drawing.js";
 // (one line each: esm_source drops the lines that start with "import")
 // Lesson 07's forward_vs_inverse drawn in the browser: twin of
@@ -15,9 +15,7 @@ const WORK = new WeakMap(); // per scene: the decoded picture, the warps' buffer
 function workFor(scene) {
   let work = WORK.get(scene);
   if (!work) {
-    const p = scene.picture;
-    const data = Uint8Array.from(atob(p.data), (c) => c.charCodeAt(0));
-    work = { picture: { data, width: p.width, height: p.height, channels: p.channels }, buffers: {}, panels: scene.panels.map(() => ({})) };
+    work = { picture: pictureFrom(scene.picture), buffers: {}, panels: scene.panels.map(() => ({})) };
     WORK.set(scene, work);
   }
   return work;

@@ -123,6 +123,12 @@ function rint(x) {
   return r - x === 0.5 && r % 2 !== 0 ? r - 1 : r;
 }
 
+// The picture as warpPerspective takes it, from homography_scenes.picture_data's base64 bytes.
+export function pictureFrom(p) {
+  const data = Uint8Array.from(atob(p.data), (c) => c.charCodeAt(0));
+  return { data, width: p.width, height: p.height, channels: p.channels };
+}
+
 // Twin: camlab.warp.warp_perspective(image, H, shape, interpolation, fill, method="numpy"): each
 // output pixel (u, v) samples the source at H^-1 (u, v, 1), bilinear or nearest, in float32 step for
 // step as numpy does it (Math.fround after each operation), source points beyond the line H sends to

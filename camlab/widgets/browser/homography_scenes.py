@@ -291,7 +291,7 @@ def hierarchy_scene(
         panel=plane_panel(ax),
         picture=picture_data(picture),
         canvasShape=[int(c) for c in _fixed_shape(fixed)],
-        imageBox=image_box(fig.im),
+        imagePlace=image_place(fig.im),
         spines=spine_lines(ax),
         fill=255,
         fixed=_jsonable(fixed),
