@@ -16,7 +16,8 @@ from test_browser_geometry_parity import CASES, NODE, assert_twins, run_js
 from camlab import homography as hg
 from camlab._validate import DegenerateError
 from camlab.widgets.controls import convex_clamp, convex_margin, format_corners, parse_corners
-from camlab.widgets.homographies.geometry import SLIDER_MARGIN_PX, SQUARE, _drag_measures
+from camlab.widgets.homographies.corner_twins import drag_measures
+from camlab.widgets.homographies.geometry import SLIDER_MARGIN_PX, SQUARE
 
 CORNERS = Path(__file__).resolve().parent.parent / "camlab" / "widgets" / "browser" / "corners.js"
 
@@ -123,7 +124,7 @@ def test_the_table_of_what_h_keeps_equals_the_demos():
         except DegenerateError:
             continue
         m = (np.c_[LINE, np.ones(4)] @ H.T)[:, :2] / (np.c_[LINE, np.ones(4)] @ H[2])[:, None]
-        expected.append(_drag_measures(LINE, m, H))
+        expected.append(drag_measures(LINE, m, H, SQUARE))
         calls.append(("dragMeasures", [LINE.tolist(), m.tolist(), H.tolist(), SQUARE.tolist()]))
     worst, verdicts = 0.0, set()
     for js, (measures, rows) in zip(run_js(calls, CORNERS), expected, strict=True):
@@ -141,3 +142,83 @@ def test_the_table_of_what_h_keeps_equals_the_demos():
         "changes|AB| / |CD|",
     } <= verdicts
     print(f"dragMeasures: worst relative error {worst:.2e}")
+
+
+def _drag_fixed() -> dict:
+    from camlab.widgets.homographies.geometry import _drag_fixed
+
+    return _drag_fixed((120, 160, 3), (260, 300))
+
+
+def test_the_drag_view_equals_the_demos():
+    """dragView: H, the tear, the line sent to infinity, A'..D', the mapped line and outline at 1e-9,
+    the table's rows and the names' places exactly, and the error of corners that cannot be used."""
+    from camlab.widgets.homographies.corner_twins import drag_view
+
+    rng = np.random.default_rng(85)
+    fixed = _drag_fixed()
+    texts = [format_corners(p) for p in _corners(rng)]
+    texts += [
+        "1, 2; 3, 4; 5, 6",
+        "0, 0; 100, 100; 200, 200; 50, 220",
+        "40, 30; 40.5, 30; 230, 200; 60, 230",
+    ]
+    jsfixed = {k: np.asarray(v).tolist() for k, v in fixed.items()}
+    out = run_js([("dragView", [{"corners": t}, jsfixed]) for t in texts], CORNERS)
+    worst, torn, hidden, errors = 0.0, 0, 0, 0
+    for js, text in zip(out, texts, strict=True):
+        py = drag_view({"corners": text}, fixed)
+        if py.error is not None:
+            assert js["error"] == py.error
+            errors += 1
+            continue
+        for key in ("corners", "H", "away", "mapped", "dense", "outline"):
+            worst = max(worst, assert_twins(js[key], getattr(py, key), f"dragView {key}"))
+        assert js["torn"] == py.torn
+        assert [tuple(r) for r in js["measures"]["rows"]] == py.measures.rows
+        assert js["names"]["visible"] == py.names.visible.tolist(), text
+        worst = max(worst, assert_twins(js["names"]["offsets"], py.names.offsets, "name offsets"))
+        torn += py.torn
+        hidden += int((~py.names.visible).sum())
+    assert errors == 3 and torn >= 5 and hidden >= 5, (errors, torn, hidden)
+    print(f"dragView: worst relative error {worst:.2e}")
+
+
+def test_a_corner_slider_writes_the_corners_as_the_kernel_does():
+    """cornerSlid: the corners text a slider move gives (the kernel's corner_keys with convex_clamp),
+    and the text and table of the error note wrapped as textwrap wraps them."""
+    import textwrap
+
+    from camlab.widgets.controls import corner_keys, corner_text
+    from camlab.widgets.homographies.corner_twins import drag_table_text, drag_view
+
+    rng = np.random.default_rng(86)
+    control = corner_text(format_corners(SQUARE), "corners")
+    keys = corner_keys(control, "abcd", 299, 259, clamp=convex_clamp(SLIDER_MARGIN_PX))
+    calls, expected = [], []
+    for p in _corners(rng)[:60]:
+        k, name = int(rng.integers(4)), ("corner_u", "corner_v")[int(rng.integers(2))]
+        value = float(np.round(rng.uniform(0, 259)))
+        control.value = format_corners(p)
+        keys["corner"].value = k
+        before = control.value
+        keys[name].value = value
+        calls.append(("cornerSlid", [before, k, name, value, SLIDER_MARGIN_PX]))
+        expected.append(None if control.value == before else control.value)
+    messages = [
+        drag_view({"corners": t}, _drag_fixed()).error
+        for t in ("1, 2; 3", "0, 0; 100, 100; 200, 200; 9, 9")
+    ]
+    messages.append("x" * 70 + " and then some more words to wrap at fifty-five, the width")
+    calls += [("wrapText", [m, 55]) for m in messages]
+    rows = [
+        drag_view({"corners": format_corners(p)}, _drag_fixed()).measures.rows
+        for p in _corners(rng)[:5]
+    ]
+    calls += [("dragTableText", [r]) for r in rows]
+    out = run_js(calls, CORNERS)
+    n, m = len(expected), len(messages)
+    assert out[:n] == expected
+    assert sum(e is not None for e in expected) >= 30
+    assert out[n : n + m] == [textwrap.wrap(msg, 55) for msg in messages]
+    assert out[n + m :] == [drag_table_text(r) for r in rows]

@@ -37,6 +37,7 @@ BROWSER_DEMOS = {
     "epipolar_lines": "epipolar",
     "transformation_hierarchy": "similarity",
     "forward_vs_inverse": "holes",
+    "drag_homography": "cross-ratio",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
@@ -336,3 +337,28 @@ def test_stack_check_is_drawn_in_the_browser_in_the_lecture_mode(playwright, tmp
     median = statistics.median(samples)
     print(json.dumps({"demo": "stack_check", "path": "browser, lecture mode", "median_ms": median}))
     assert median <= 50, f"keydown to changed pixels took {median:.1f} ms in the lecture mode"
+
+
+def test_a_drag_of_a_corner_on_the_drag_homography_canvas_writes_the_corners_and_the_kernel_follows(
+    lab_page,
+):
+    """drag_homography's corner is dragged in the browser: the corners text (linked to the canvas), the
+    corner sliders and the kernel's readout follow, and the canvas draws what matplotlib draws there."""
+    page = lab_page
+    name = "drag_homography"
+    _shown(page, name)
+    drag_on_canvas(page, name, 1, [(250.0, 60.0), (262.0, 66.0), (270.0, 72.0)])
+    page.wait_for_function(  # the corners text box, written through its link to the canvas
+        "(s) => document.querySelector(s).value.includes('; 270.00, 72.00; ')",
+        arg=f".{css(name)} input[type=text]",
+        polling=100,
+    )
+    page.wait_for_timeout(500)
+    corners = page.locator(f".{css(name)} input[type=text]").input_value()
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_dragged", live)
+    share = drawn_as_matplotlib_draws_it(name, live, {"corners": corners})
+    assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
+    readout = page.locator(f".{css(name)} pre").last.text_content()
+    assert "cross-ratio" in readout, readout

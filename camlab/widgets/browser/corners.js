@@ -1,10 +1,9 @@
-import { crossRatio, formatFixed, inv3, matmul } from "./geometry.js";
-import { normaliseHomography } from "./homography.js";
+import { clipLine, crossRatio, formatFixed, inv3, mapPoints, matmul } from "./geometry.js";
+import { mapPolyline, normaliseHomography, splitsAtInfinity } from "./homography.js";
 // (one line each: esm_source drops the lines that start with "import")
-// The per-move arithmetic of lesson 07's drag_homography, for its browser drawing (issue 31; not yet
-// in browser/__init__.py's MODULES: the drawer, its scene and the corner sliders' and the mouse's
-// path in widget.js are still to come, see docs/architecture.md). Every function has its numpy twin
-// named beside it, and tests/test_browser_corners_parity.py runs both under node.
+// The per-move arithmetic of lesson 07's drag_homography drawn in the browser (drag.js draws it).
+// Every function has its numpy twin named beside it, and tests/test_browser_corners_parity.py runs
+// both under node.
 
 const CORNER_LIMIT_PX = 1e6; // Twin: camlab.widgets.controls.CORNER_LIMIT_PX
 const COLLINEAR_TOL = 1e-9; // Twin: camlab.homography.estimation._COLLINEAR_TOL
@@ -225,4 +224,110 @@ export function dragMeasures(linePts, m, H, square) {
     corner_angle: angle,
   };
   return { measures, rows: dragTableRows(cr0, cr1, length0, length1, ratio0, ratio1, 90, angle) };
+}
+
+// Twin: camlab.widgets.homographies.corner_twins.across_line(points): the unit offset (y up) across
+// the line through the finite points, on its upper side ([0, 1] for fewer than two).
+export function acrossLine(points) {
+  const finite = points.filter((p) => p.every(Number.isFinite));
+  if (finite.length < 2) return [0, 1];
+  const a = finite[0], b = finite[finite.length - 1];
+  const d = [b[0] - a[0], b[1] - a[1]];
+  const n = Math.max(norm2(...d), 1e-9);
+  const e = [d[0] / n, -d[1] / n];
+  const perp = [-e[1], e[0]];
+  return perp[1] > 0 || (perp[1] === 0 && perp[0] > 0) ? perp : [-perp[0], -perp[1]];
+}
+
+// Twin: camlab.widgets.homographies.corner_twins.name_places(points, corners, out_hw): each name's
+// offset from its point (points, y up) and whether it is shown.
+export function namePlaces(points, corners, outHw) {
+  const across = acrossLine(points);
+  const shown = [], offsets = [], visible = [];
+  for (const p of points) {
+    const finite = p.every(Number.isFinite);
+    const gap = corners.map((c) => (finite ? norm2(c[0] - p[0], c[1] - p[1]) : Infinity));
+    const least = Math.min(...gap);
+    const near = corners[gap.indexOf(least)];
+    const away = [p[0] - near[0], p[1] - near[1]];
+    const k = 11 + 7 * Math.abs(across[0]);
+    let offset = [k * across[0], k * across[1]];
+    if (least < 20) {
+      const n = Math.max(norm2(...away), 1e-9);
+      offset = [(away[0] / n) * 17, -((away[1] / n) * 17)];
+    }
+    const seen = finite && 12 <= p[0] && p[0] <= outHw[1] - 12 && 12 <= p[1] && p[1] <= outHw[0] - 4 && least >= 4 && shown.every((q) => norm2(p[0] - q[0], p[1] - q[1]) >= 14);
+    offsets.push(offset);
+    visible.push(seen);
+    if (seen) shown.push(p);
+  }
+  return { offsets, visible };
+}
+
+// Twin: camlab.widgets.homographies.corner_twins.drag_table_text(rows): the table, monospace.
+export function dragTableText(rows) {
+  return `${"measured".padEnd(15)}  source    image\n` + rows.map(([name, a, b, verdict]) => `${name.padEnd(15)} ${a.padStart(7)}  ${b.padStart(7)}  ${verdict}`).join("\n");
+}
+
+// Twin: textwrap.wrap(text, width) for text without hyphenated words: lines of at most `width`
+// characters broken at spaces, a longer word split to fill the line it starts on.
+export function wrapText(text, width) {
+  const chunks = text.replace(/\s/g, " ").split(/( +)/).filter((c) => c !== "").reverse();
+  const lines = [];
+  while (chunks.length) {
+    const line = [];
+    let length = 0;
+    if (lines.length && chunks[chunks.length - 1].trim() === "") chunks.pop();
+    while (chunks.length && length + chunks[chunks.length - 1].length <= width) {
+      const chunk = chunks.pop();
+      line.push(chunk);
+      length += chunk.length;
+    }
+    if (chunks.length && chunks[chunks.length - 1].length > width) {
+      const chunk = chunks.pop(), room = width - length;
+      line.push(chunk.slice(0, room));
+      chunks.push(chunk.slice(room));
+    }
+    if (line.length && line[line.length - 1].trim() === "") line.pop();
+    if (line.length) lines.push(line.join(""));
+  }
+  return lines;
+}
+
+// Twin: camlab.widgets.homographies.corner_twins.drag_view(values, fixed): {error} when the corners
+// cannot be used, else the corners, H, the tear, the source line H sends to infinity (clipped), A'..D',
+// the mapped line and outline (NaN where they pass through infinity), the table and the names' places.
+export function dragView(v, fixed) {
+  const parsed = parseCorners(v.corners);
+  if (parsed.error) return { error: parsed.error };
+  const fit = homographyFromCorners(fixed.square, parsed.corners);
+  if (fit.error) return { error: fit.error };
+  const { H } = fit, corners = parsed.corners;
+  const mapped = mapPoints(H, fixed.line);
+  return {
+    error: null,
+    corners,
+    H,
+    torn: splitsAtInfinity(H, fixed.square),
+    away: clipLine(H[2], fixed.xlim, fixed.ylim),
+    mapped,
+    dense: mapPolyline(H, fixed.line_dense),
+    outline: mapPolyline(H, fixed.square_dense),
+    measures: dragMeasures(fixed.line, mapped, H, fixed.square),
+    names: namePlaces(mapped, corners, fixed.out_hw),
+  };
+}
+
+// Twin: camlab.widgets.controls.corner_keys' write_corner: a corner slider moved to `value` moves the
+// chosen corner's u (or v), stopped short of a dent (convexClamp); the new corners text, or null when
+// it stays the same. Only the slider that moved is read, so a slider the kernel is still bringing
+// to a newly chosen corner moves nothing.
+export function cornerSlid(text, index, name, value, margin) {
+  const parsed = parseCorners(text);
+  if (parsed.error || !Number.isFinite(value)) return null;
+  const corners = parsed.corners;
+  const wanted = name === "corner_u" ? [value, corners[index][1]] : [corners[index][0], value];
+  corners[index] = convexClamp(margin, corners, index, wanted);
+  const out = formatCorners(corners);
+  return out === text ? null : out;
 }

@@ -22,8 +22,9 @@ function warpTarget(scene) {
 }
 
 // The picture warped by H (warpPerspective) and shown as the kernel's live canvas shows it
-// (liveImage: cv2's nearest shrink to its rounded box), unsmoothed.
-function drawWarp(ctx, scene, H) {
+// (liveImage: cv2's nearest shrink to its rounded box), unsmoothed. The scene's picture,
+// canvasShape, fill and imagePlace (homography_scenes); drag_homography's drawer shares it.
+export function drawWarp(ctx, scene, H) {
   const target = warpTarget(scene);
   const [h, w] = scene.canvasShape;
   // mirrored beyond the line H sends to infinity, as the kernel's cv2 warp draws a torn picture

@@ -19,7 +19,9 @@ from .plane_scenes import boxed_text_scene
 from .scenes import plane_panel, spine_lines
 
 __all__ = [
+    "drag_scene",
     "forward_inverse_scene",
+    "haloed_marker_style",
     "haloed_line_style",
     "hierarchy_scene",
     "image_box",
@@ -53,6 +55,40 @@ def haloed_line_style(line: Any, px_per_point: float) -> dict:
         px_per_point,
         halo=to_hex(stroke["foreground"]),
         haloWidth=float(stroke["linewidth"]) * px_per_point,
+    )
+
+
+def _halo(artist: Any, px_per_point: float) -> dict:
+    """An artist's ``palette.halo`` (its one ``withStroke``) as ``halo`` (colour) and ``haloWidth`` (px)."""
+    stroke = artist.get_path_effects()[0]._gc  # noqa: SLF001 - withStroke keeps its linewidth and foreground here
+    return dict(
+        halo=to_hex(stroke["foreground"]), haloWidth=float(stroke["linewidth"]) * px_per_point
+    )
+
+
+def haloed_marker_style(line: Any, px_per_point: float) -> dict:
+    """:func:`~camlab.widgets.browser.marker_style` with the marker's halo (``palette.halo``).
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D
+        A line drawn with a round marker and one ``withStroke`` path effect.
+    px_per_point : float
+        Figure dpi / 72.
+
+    Returns
+    -------
+    dict
+        The marker's style (a face of "none" transparent, and ``hollow``), with ``halo`` and
+        ``haloWidth``.
+    """
+    face = line.get_markerfacecolor()
+    hollow = isinstance(face, str) and face == "none"
+    return dict(
+        marker_style(line, px_per_point),
+        color=to_hex(face, keep_alpha=True),
+        hollow=hollow,
+        **_halo(line, px_per_point),
     )
 
 
@@ -310,6 +346,74 @@ def hierarchy_scene(
             ),
             after=marker_style(fig.diagonal_art, pt),
             facts=text_style(fig.facts),
+            warning=warning,
+        ),
+    )
+
+
+def drag_scene(
+    axes: Any, art: Any, picture: np.ndarray, fixed: Mapping[str, Any], notes: Mapping[str, Any]
+) -> dict:
+    """What ``drag.js`` needs to draw lesson 07's ``drag_homography`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    axes : (2,) sequence of matplotlib.axes.Axes
+        The source picture's axes and the target's.
+    art : namespace
+        The moving artists (``_drag_artists``): ``sent_away``, ``im``, ``quad``,
+        ``mapped_line``, ``mapped_dots``, ``mapped_names``, ``handles``, ``chosen``, ``numbers``
+        and ``warning`` (its ``artist``, the note on a box).
+    picture : (h, w, 3) uint8 ndarray
+        The picture the browser warps.
+    fixed : mapping
+        :func:`~camlab.widgets.homographies.corner_twins.drag_view`'s constants.
+    notes : mapping
+        ``torn`` (the note on a torn picture), ``longest`` (a note of as many lines as any the
+        demo shows), ``margin`` (the corner sliders' stop short of a dent, px) and ``radius``
+        (how near a press picks a corner, px).
+
+    Returns
+    -------
+    dict
+        The scene (JSON).
+    """
+    ax_s, ax_t = axes
+    pt = ax_t.figure.dpi / 72.0
+    note = art.warning.artist
+    shown, visible = note.get_text(), note.get_visible()
+    note.set_text(notes["longest"])  # the box's look and lines, top-aligned: any note's first lines
+    try:
+        warning = boxed_text_scene(note)
+    finally:
+        note.set_text(shown)
+        note.set_visible(visible)
+    name = art.mapped_names[0]
+    return dict(
+        source=plane_panel(ax_s),
+        target=plane_panel(ax_t),
+        picture=picture_data(picture),
+        canvasShape=[int(c) for c in fixed["out_hw"]],
+        imagePlace=image_place(art.im),
+        fill=255,
+        spines=spine_lines(ax_t),
+        fixed={
+            k: (list(v) if k == "out_hw" else np.asarray(v, dtype=float).tolist())
+            for k, v in fixed.items()
+        },
+        names=[label.get_text() for label in art.mapped_names],
+        torn=notes["torn"],
+        margin=float(notes["margin"]),
+        radius=float(notes["radius"]),
+        styles=dict(
+            away=line_style(art.sent_away, pt),
+            quad=haloed_line_style(art.quad, pt),
+            mappedLine=haloed_line_style(art.mapped_line, pt),
+            mappedDots=marker_style(art.mapped_dots, pt),
+            handles=haloed_marker_style(art.handles, pt),
+            chosen=haloed_marker_style(art.chosen, pt),
+            names=dict(text_style(name), **_halo(name, pt)),
+            numbers=dict(text_style(art.numbers), **text_lines(art.numbers)),
             warning=warning,
         ),
     )
