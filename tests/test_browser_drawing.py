@@ -299,16 +299,26 @@ def test_the_transformation_hierarchy_canvas_follows_the_group_and_its_tear(lab_
     page = lab_page
     name = "transformation_hierarchy"
     _shown(page, name)
+    from playwright.sync_api import TimeoutError as PlaywrightTimeout
+
     page.locator(f".{css(name)} select").select_option("projective")
     handles = page.locator(f".{css(name)} .widget-slider .noUi-handle")
-    handles.nth(6).focus()  # v1, enabled now
-    page.keyboard.press("End")
-    page.wait_for_function(  # the slider's readout, at its end
-        "(s) => { const r = document.querySelectorAll(s); return r.length > 6"
-        " && parseFloat(r[6].textContent) === 15; }",
-        arg=f".{css(name)} .widget-readout",
-        polling=100,
-    )
+    for _ in range(30):  # v1 takes keys once the kernel has enabled it (the group's reply): retry
+        handles.nth(6).focus()
+        page.keyboard.press("End")
+        try:
+            page.wait_for_function(  # the slider's readout, at its end
+                "(s) => { const r = document.querySelectorAll(s); return r.length > 6"
+                " && parseFloat(r[6].textContent) === 15; }",
+                arg=f".{css(name)} .widget-readout",
+                polling=100,
+                timeout=3000,
+            )
+            break
+        except PlaywrightTimeout:
+            continue
+    else:
+        pytest.fail("v1's readout never reached 15 after 30 presses of End")
     page.wait_for_timeout(300)
     values = slider_values(page, name)
     width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")

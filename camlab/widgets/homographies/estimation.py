@@ -324,8 +324,8 @@ def forward_vs_inverse() -> Demo:
         The demo: controls ``scale`` and ``angle`` (the rotation, degrees), the figure (the
         forward warp with its holes black, the window :data:`ZOOM` of it and of the inverse
         warp enlarged, and the inverse warp; outside the picture both are grey) and ``state`` (``H``, source to output pixels,
-        and ``hole_fraction``, the share of the inverse warp's interior pixels, those whose
-        four neighbours are covered too, that the forward warp never reaches).
+        and ``hole_fraction``, the share of the covered area's interior pixels, those whose
+        eight neighbours are covered too, that the forward warp never reaches).
 
     References
     ----------
