@@ -372,3 +372,34 @@ def test_a_drag_of_a_corner_on_the_drag_homography_canvas_writes_the_corners_and
     assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
     readout = page.locator(f".{css(name)} pre").last.text_content()
     assert "cross-ratio" in readout, readout
+
+
+def test_typed_corners_of_a_bow_tie_tear_the_drag_homography_canvas_as_matplotlib_draws_it(
+    lab_page,
+):
+    """drag_homography's corners typed into its text box reach the canvas through their link: a bow
+    tie is torn (the line sent to infinity, the note), as matplotlib draws it; a text that cannot be
+    used keeps the last picture."""
+    page = lab_page
+    name = "drag_homography"
+    _shown(page, name)
+    box = page.locator(f".{css(name)} input[type=text]")
+    bow_tie = "100.00, 40.00; 200.00, 40.00; 20.00, 230.00; 280.00, 230.00"
+    box.fill(bow_tie)
+    box.press("Enter")
+    page.wait_for_timeout(500)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    torn = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_torn", torn)
+    share = drawn_as_matplotlib_draws_it(name, torn, {"corners": bow_tie})
+    assert share >= 0.95, f"torn, the canvas matches matplotlib's on {share:.0%}"
+    box.fill("1, 2; 3, 4")
+    box.press("Enter")
+    page.wait_for_timeout(500)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    kept = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_cannot", kept)
+    changed = np.abs(kept[..., :3].astype(int) - torn[..., :3]).max(axis=-1) > 0
+    assert 0 < changed.mean() < 0.05, (
+        f"{changed.mean():.1%} of the canvas changed: only the note should"
+    )
