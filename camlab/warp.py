@@ -26,7 +26,6 @@ from numpy.typing import ArrayLike
 
 from ._validate import CamlabInputError, DegenerateError, check_image, check_shape
 from .homography import check_homography, compose
-from .projective import map_points
 
 __all__ = [
     "CanvasBounds",
@@ -301,8 +300,18 @@ def forward_warp(
     Hm = check_homography(H)
     h, w = _check_shape(output_shape)
     sh, sw = img.shape[:2]
-    vv, uu = np.mgrid[0:sh, 0:sw]
-    pts = map_points(Hm, np.column_stack([uu.ravel(), vv.ravel()]).astype(float))
+    vv, uu = np.mgrid[0:sh, 0:sw].reshape(2, -1).astype(float)
+    # x' ~ H (u, v, 1) for every source pixel, each row of H written out: the same sums in any
+    # numpy (a matrix product's rounding depends on the BLAS, and a landing spot exactly halfway
+    # between two pixels, as at rotation 0, would round either way)
+    w_ = Hm[2, 0] * uu + Hm[2, 1] * vv + Hm[2, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        pts = np.column_stack(
+            [
+                (Hm[0, 0] * uu + Hm[0, 1] * vv + Hm[0, 2]) / w_,
+                (Hm[1, 0] * uu + Hm[1, 1] * vv + Hm[1, 2]) / w_,
+            ]
+        )
     ok = np.all(np.isfinite(pts), axis=1)
     ui = np.full(len(pts), -1, dtype=np.intp)
     vi = np.full(len(pts), -1, dtype=np.intp)

@@ -195,3 +195,175 @@ def test_the_shrink_to_the_shown_size_equals_opencvs_nearest_resize():
     for js, img, (_sw, _sh, dw, dh) in zip(run_js(calls, HOMOGRAPHY), images, sizes, strict=True):
         py = cv2.resize(img, (dw, dh), interpolation=cv2.INTER_NEAREST)
         assert np.array_equal(np.asarray(js, dtype=np.uint8).reshape(dh, dw, 4), py), (dw, dh)
+
+
+# ----------------------------------------------------------------------------- forward vs inverse
+
+
+def _forward_settings(rng: np.random.Generator) -> list[dict]:
+    """The sliders' values on their steps (scale 0.4-3 by 0.05, angle -45-45 by 1), and the sweep's."""
+    out = [
+        dict(
+            scale=float(np.round(rng.uniform(0.4, 3.0) * 20) / 20),
+            angle=float(np.round(rng.uniform(-45, 45))),
+        )
+        for _ in range(40)
+    ]
+    return out + [
+        dict(scale=s, angle=a) for s in (0.6, 1.0, 1.5, 2.0, 2.8, 3.0) for a in (0.0, 15.0)
+    ]
+
+
+def _fixed_json(fixed: dict) -> dict:
+    return {k: np.asarray(v).tolist() for k, v in fixed.items()}
+
+
+def test_the_forward_and_inverse_warps_equal_the_demos_byte_for_byte():
+    """forwardInverseView: H and the outline at 1e-9, both warps as shown and the masks exactly."""
+    from camlab.widgets.homographies.twins import forward_inverse_fixed, forward_inverse_view
+
+    pic = scenes.house_picture((80, 60))
+    fixed = forward_inverse_fixed(pic.shape, (180, 240))
+    settings = _forward_settings(np.random.default_rng(75))
+    calls = [("forwardInverseView", [v, _image_arg(pic), _fixed_json(fixed)]) for v in settings]
+    worst, holes = 0.0, []
+    for js, v in zip(run_js(calls, HOMOGRAPHY), settings, strict=True):
+        py = forward_inverse_view(v, pic, fixed)
+        worst = max(
+            worst,
+            assert_twins(js["H"], py.H, "H"),
+            assert_twins(js["outline"], py.outline, "outline"),
+        )
+        for key in ("shown", "inverse"):
+            img = np.asarray(js[key], dtype=np.uint8).reshape(180, 240, 4)
+            assert (img[..., 3] == 255).all()
+            differ = np.count_nonzero(img[..., :3] != getattr(py, key))
+            assert differ == 0, f"{key} at {v}: {differ} bytes differ"
+        for key in ("covered", "reached", "pulled"):
+            mask = np.asarray(js[key], dtype=bool).reshape(180, 240)
+            assert np.array_equal(mask, getattr(py, key)), f"{key} at {v}"
+        holes.append(float(np.mean(py.covered & ~py.reached)))
+    assert min(holes) == 0 and max(holes) > 0.5, "no setting without holes, or none with many"
+    print(f"forward_vs_inverse: worst relative error {worst:.2e}; images and masks equal")
+
+
+def test_the_forward_warp_and_the_covered_area_equal_camlab_on_random_maps():
+    """forwardWarp against camlab.warp.forward_warp (a one-channel picture too); coveredArea on random quadrilaterals."""
+    from camlab.warp import forward_warp
+    from camlab.widgets.homographies.twins import covered_area
+
+    rng = np.random.default_rng(76)
+    pic = scenes.house_picture((40, 30))
+    Hs = [
+        hg.compose(
+            [[1, 0, 35], [0, 1, 25], [0, 0, 1]],
+            hg.hierarchy_matrix(
+                "projective",
+                theta=rng.uniform(-3, 3),
+                scale=rng.uniform(0.5, 2.5),
+                shear=rng.uniform(-1.5, 1.5),
+                aspect=rng.uniform(0.5, 2),
+                v=rng.uniform(-0.05, 0.05, 2),
+            ),
+            [[1, 0, -19.5], [0, 1, -14.5], [0, 0, 1]],
+        )
+        for _ in range(12)
+    ]
+    quads = [np.sort(rng.uniform(0, 2 * np.pi, 4)) for _ in range(30)]
+    quads = [
+        np.column_stack([35 + r * np.cos(t), 25 + r * np.sin(t)])
+        for t, r in zip(quads, rng.uniform(5, 40, 30), strict=True)
+    ]
+    quads.append(
+        np.array([[2.0, 3.0], [20.0, 3.0], [20.0, 9.0], [2.0, 9.0]])
+    )  # centres on its edges
+    calls = [
+        ("forwardWarp", [_image_arg(img), H.tolist(), [50, 70], fill])
+        for H in Hs
+        for img, fill in ((pic, 0), (pic[..., 0], 7))
+    ]
+    calls += [("coveredArea", [q.tolist(), [50, 70]]) for q in quads]
+    out = run_js(calls, HOMOGRAPHY)
+    for js, (H, (img, fill)) in zip(
+        out, [(H, c) for H in Hs for c in ((pic, 0), (pic[..., 0], 7))], strict=False
+    ):
+        py = forward_warp(img, H, (50, 70), fill=fill)
+        py = np.repeat(py[..., None], 3, axis=-1) if py.ndim == 2 else py
+        assert np.array_equal(np.asarray(js, dtype=np.uint8).reshape(50, 70, 4)[..., :3], py)
+    areas = out[2 * len(Hs) :]
+    for js, q in zip(areas, quads, strict=True):
+        assert np.array_equal(np.asarray(js, dtype=bool).reshape(50, 70), covered_area(q, (50, 70)))
+    assert covered_area(quads[-1], (50, 70)).sum() == 19 * 7, (
+        "the edges' pixel centres count as covered"
+    )
+
+
+def test_the_live_canvas_images_equal_what_the_kernel_blits():
+    """liveImage, per panel of the built demo: byte for byte the kernel's live image (``make_image``),
+    the forward warp shrunk to its box (cv2's nearest) and the zoomed windows enlarged (nearest at centres)."""
+    from camlab.widgets import all_demos
+    from camlab.widgets.browser.homography_scenes import forward_inverse_scene
+    from camlab.widgets.homographies.twins import forward_inverse_fixed, forward_inverse_view
+
+    setting = dict(scale=1.35, angle=-7.0)
+    demo = all_demos()["forward_vs_inverse"].builder()
+    demo.set(**setting)
+    demo.view.pixels()
+    fig = demo.figure
+    names = ("forward", "forward_zoom", "inverse_zoom", "inverse")
+    images = dict(zip(names, (ax.images[0] for ax in fig.axes), strict=True))
+    pic = scenes.house_picture((80, 60))
+    fixed = forward_inverse_fixed(pic.shape, (180, 240))
+    scene = forward_inverse_scene(images, [], pic, fixed)
+    g = forward_inverse_view(setting, pic, fixed)
+    top, left, h, w = scene["zoom"]
+    data = dict(
+        forward=g.shown,
+        inverse=g.inverse,
+        forward_zoom=g.shown[top : top + h, left : left + w],
+        inverse_zoom=g.inverse[top : top + h, left : left + w],
+    )
+    calls = []
+    for panel in scene["panels"]:
+        a = data[panel["image"]]
+        rgba = np.dstack([a, np.full(a.shape[:2], 255, np.uint8)])
+        calls.append(
+            ("liveImage", [rgba.reshape(-1).tolist(), a.shape[1], a.shape[0], panel["place"]])
+        )
+    renderer = fig.canvas.get_renderer()
+    for js, panel in zip(run_js(calls, HOMOGRAPHY), scene["panels"], strict=True):
+        kernel = images[panel["image"]].make_image(renderer)[0][::-1]  # Agg's rows from the bottom
+        shown = np.asarray(js["data"], dtype=np.uint8).reshape(js["height"], js["width"], 4)
+        assert shown.shape == kernel.shape, (panel["image"], shown.shape, kernel.shape)
+        assert np.array_equal(shown, kernel), (
+            f"{panel['image']}: {np.count_nonzero(shown != kernel)} bytes differ"
+        )
+
+
+def test_nearest_at_centres_equals_the_live_canvas():
+    """nearestAtCentres against camlab.widgets._transport's, on random boxes and unrounded edges."""
+    from camlab.widgets._transport import _nearest_at_centres
+
+    rng = np.random.default_rng(77)
+    cases = []
+    for _ in range(12):
+        sw, sh = (int(c) for c in rng.integers(3, 40, 2))
+        left, bottom = (int(c) for c in rng.integers(0, 300, 2))
+        dw, dh = int(rng.integers(sw, 5 * sw + 2)), int(rng.integers(sh, 5 * sh + 2))
+        us = [left + rng.uniform(-0.5, 0.5), left + dw + rng.uniform(-0.5, 0.5)]
+        vs = [bottom + rng.uniform(-0.5, 0.5), bottom + dh + rng.uniform(-0.5, 0.5)]
+        cases.append(
+            (
+                rng.integers(0, 256, (sh, sw, 4), dtype=np.uint8),
+                us,
+                vs,
+                (left, left + dw, bottom, bottom + dh),
+            )
+        )
+    calls = [
+        ("nearestAtCentres", [a.reshape(-1).tolist(), a.shape[1], a.shape[0], us, vs, list(box)])
+        for a, us, vs, box in cases
+    ]
+    for js, (a, us, vs, box) in zip(run_js(calls, HOMOGRAPHY), cases, strict=True):
+        py = _nearest_at_centres(a, us, vs, box)
+        assert np.array_equal(np.asarray(js, dtype=np.uint8).reshape(py.shape), py)

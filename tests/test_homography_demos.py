@@ -612,14 +612,11 @@ def test_parallax_demo_nests_coinciding_marks_and_draws_none_outside_the_image()
 
 def test_hierarchy_and_drag_demos_share_one_rule_for_a_ratio_of_two_infinite_lengths():
     """∞ / ∞ is undefined, never "inf": both edges of |top| / |bottom| pass through infinity at v1 = 15."""
-    from camlab.widgets.homographies.geometry import (
-        _measures_text,
-        _ratio,
-        transformation_hierarchy,
-    )
+    from camlab.widgets.homographies.corner_twins import length_ratio
+    from camlab.widgets.homographies.geometry import _measures_text, transformation_hierarchy
 
-    assert _ratio(np.inf, 2.0) == np.inf and _ratio(2.0, np.inf) == 0.0
-    assert np.isnan(_ratio(np.inf, np.inf))
+    assert length_ratio(np.inf, 2.0) == np.inf and length_ratio(2.0, np.inf) == 0.0
+    assert np.isnan(length_ratio(np.inf, np.inf))
     demo = transformation_hierarchy()
     demo.set(group="projective")
     demo.set(v1=15.0)

@@ -60,6 +60,9 @@ MODULES = (
     "epipolar.js",
     "homography.js",
     "hierarchy.js",
+    "forward_inverse.js",
+    "corners.js",
+    "drag.js",
     "widget.js",
 )
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
@@ -91,7 +94,9 @@ class BrowserCanvas(anywidget.AnyWidget):
     alt = traitlets.Unicode("").tag(sync=True)
 
 
-def canvas_class(params: Sequence[str], choices: Sequence[str] = ()) -> type[BrowserCanvas]:
+def canvas_class(
+    params: Sequence[str], choices: Sequence[str] = (), texts: Sequence[str] = ()
+) -> type[BrowserCanvas]:
     """A :class:`BrowserCanvas` with one synced trait per parameter the browser redraws on.
 
     Parameters
@@ -102,16 +107,21 @@ def canvas_class(params: Sequence[str], choices: Sequence[str] = ()) -> type[Bro
     choices : sequence of str
         Those among ``params`` whose control is a choice (toggle buttons, a dropdown): an integer
         trait each, linked to the control's ``index`` (its ``value`` is not synced to the browser).
+    texts : sequence of str
+        Those among ``params`` whose control is a text box: a string trait each.
 
     Returns
     -------
     type
         The canvas class.
     """
-    traits = {
-        name: (traitlets.Int(0) if name in choices else traitlets.Float(0.0)).tag(sync=True)
-        for name in params
-    }
+
+    def trait(name: str) -> traitlets.TraitType:
+        if name in texts:
+            return traitlets.Unicode("")
+        return traitlets.Int(0) if name in choices else traitlets.Float(0.0)
+
+    traits = {name: trait(name).tag(sync=True) for name in params}
     return type("BrowserCanvas_" + "_".join(params), (BrowserCanvas,), traits)
 
 
@@ -208,7 +218,8 @@ class BrowserView(FigureView):
     shown is a :class:`BrowserCanvas` instead of the figure, and the figure is drawn only when
     asked (:meth:`pixels`, the static PNG). Headless (no kernel), or with browser drawing switched
     off (:func:`browser_drawing`), it is a plain FigureView in the display mode. ``params`` names
-    the controls the browser redraws on; ``choices``, those of them that are choices (buttons).
+    the controls the browser redraws on; ``choices``, those of them that are choices (buttons);
+    ``texts``, those that are text boxes.
     """
 
     def __init__(
@@ -218,6 +229,7 @@ class BrowserView(FigureView):
         mode: str | None = None,
         dpi: float = 90,
         choices: Sequence[str] = (),
+        texts: Sequence[str] = (),
     ):
         wanted = mode or display_mode()
         browser = browser_drawing(wanted)
@@ -226,13 +238,14 @@ class BrowserView(FigureView):
         self.browser = browser
         self.params = tuple(params)
         self.choices = tuple(choices)  # the parameters whose controls are choices (buttons)
+        self.texts = tuple(texts)  # the parameters whose controls are text boxes
         self._stale = False
         self.canvas: BrowserCanvas | None = None
         self.links: list[
             W.Widget
         ] = []  # slider -> canvas trait, in the browser (ipywidgets.jslink)
         if self.browser:
-            self.canvas = canvas_class(self.params, self.choices)()
+            self.canvas = canvas_class(self.params, self.choices, self.texts)()
             self.canvas.layout = W.Layout(max_width="100%")
             self.widget = self.canvas
 
@@ -280,11 +293,8 @@ class BrowserView(FigureView):
         for name in self.params:
             control = demo.controls[name]
             trait = "index" if name in self.choices else "value"  # a choice syncs its index only
-            setattr(
-                self.canvas,
-                name,
-                getattr(control, trait) if name in self.choices else float(control.value),
-            )
+            value = getattr(control, trait)
+            setattr(self.canvas, name, value if name in self.choices + self.texts else float(value))
             self.links.append(W.jslink((control, trait), (self.canvas, name)))
         self.canvas.alt = demo.alt_text
 

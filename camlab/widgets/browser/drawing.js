@@ -80,7 +80,8 @@ export function polygon(ctx, pts, style) {
 
 // One line of text at canvas point `at`, aligned as matplotlib aligns it: ha left/center/right,
 // va by the "lp" box (style.ascent above the baseline, style.descent below), on a box of colour
-// style.box padded by style.pad when given. Returns the text's box {x0, x1, top, bottom}.
+// style.box padded by style.pad when given, outlined by style.halo when given. Returns the text's box
+// {x0, x1, top, bottom}.
 export function label(ctx, text, at, style, ha = "center", va = "center") {
   ctx.save();
   ctx.font = style.font;
@@ -94,9 +95,15 @@ export function label(ctx, text, at, style, ha = "center", va = "center") {
     ctx.fillStyle = style.box;
     ctx.fillRect(box.x0 - p, box.top - p, width + 2 * p, a + d + 2 * p);
   }
-  ctx.fillStyle = style.color;
   ctx.textAlign = "left";
   ctx.textBaseline = "alphabetic";
+  if (style.halo) { // palette.halo on a text: its glyphs outlined first, style.haloWidth px wide
+    ctx.lineJoin = "round";
+    ctx.lineWidth = style.haloWidth;
+    ctx.strokeStyle = style.halo;
+    ctx.strokeText(text, x0, base);
+  }
+  ctx.fillStyle = style.color;
   ctx.fillText(text, x0, base);
   ctx.restore();
   return box;
@@ -280,4 +287,21 @@ export function pixelsToData(toPixels, box, [u, v]) {
 // A value clipped to a slider's range {min, max, step} and put on its steps, as the slider shows it.
 export function onSlider(value, r) {
   return Math.round(Math.min(r.max, Math.max(r.min, value)) / r.step) * r.step;
+}
+
+// An RGBA image (rows from the top) drawn at canvas box {left, top, width, height}, unsmoothed:
+// pixel for pixel on a canvas at the figure's size, each pixel a block on a denser screen. `holder`
+// keeps its offscreen canvas between draws.
+export function putPixels(ctx, holder, data, width, height, box) {
+  if (!holder.canvas || holder.canvas.width !== width || holder.canvas.height !== height) {
+    holder.canvas = document.createElement("canvas");
+    holder.canvas.width = width;
+    holder.canvas.height = height;
+    holder.ctx = holder.canvas.getContext("2d");
+  }
+  holder.ctx.putImageData(new ImageData(data, width, height), 0, 0);
+  ctx.save();
+  ctx.imageSmoothingEnabled = false;
+  ctx.drawImage(holder.canvas, 0, 0, width, height, box.left, box.top, box.width, box.height);
+  ctx.restore();
 }

@@ -1,4 +1,4 @@
-import { hierarchyView, nearestResize, warpPerspective } from "./homography.js";
+import { hierarchyView, liveImage, pictureFrom, warpPerspective } from "./homography.js";
 import { inPanel } from "./projective_plane.js";
 // (one line each: esm_source drops the lines that start with "import")
 // Lesson 07's transformation_hierarchy drawn in the browser: twin of
@@ -7,51 +7,30 @@ import { inPanel } from "./projective_plane.js";
 // picture is warped pixel by pixel (warpPerspective, the twin of camlab.warp.warp_perspective's
 // numpy path with mirror=True: the same bytes), shrunk to the size it is shown and drawn there, as the kernel's live
 // canvas draws imshow(interpolation="nearest"). The readout stays the kernel's.
-import { boxedText, dot, polyline, textLines } from "./drawing.js";
+import { boxedText, dot, polyline, putPixels, textLines } from "./drawing.js";
 
 const WARPS = new WeakMap(); // per scene: the decoded picture, the warp and the canvas it is shown on
 
 function warpTarget(scene) {
   let target = WARPS.get(scene);
   if (!target) {
-    const p = scene.picture;
-    const data = Uint8Array.from(atob(p.data), (c) => c.charCodeAt(0));
     const [h, w] = scene.canvasShape;
-    const box = scene.imageBox;
-    const canvas = document.createElement("canvas");
-    canvas.width = box.width;
-    canvas.height = box.height;
-    const ctx = canvas.getContext("2d");
-    target = {
-      picture: { data, width: p.width, height: p.height, channels: p.channels },
-      warped: new Uint8ClampedArray(h * w * 4),
-      canvas,
-      ctx,
-      image: ctx.createImageData(box.width, box.height),
-    };
+    target = { picture: pictureFrom(scene.picture), warped: new Uint8ClampedArray(h * w * 4), holder: {} };
     WARPS.set(scene, target);
   }
   return target;
 }
 
-// The picture warped by H (warpPerspective) and kept at the size it is shown, as the kernel's live
-// canvas keeps it (nearestResize: cv2's nearest shrink), drawn at its rounded box, unsmoothed.
-function drawWarp(ctx, scene, H) {
+// The picture warped by H (warpPerspective) and shown as the kernel's live canvas shows it
+// (liveImage: cv2's nearest shrink to its rounded box), unsmoothed. The scene's picture,
+// canvasShape, fill and imagePlace (homography_scenes); drag_homography's drawer shares it.
+export function drawWarp(ctx, scene, H) {
   const target = warpTarget(scene);
   const [h, w] = scene.canvasShape;
-  const box = scene.imageBox;
   // mirrored beyond the line H sends to infinity, as the kernel's cv2 warp draws a torn picture
   warpPerspective(target.picture, H, scene.canvasShape, "bilinear", scene.fill, target.warped, true);
-  if (box.width <= w && box.height <= h) {
-    nearestResize(target.warped, w, h, box.width, box.height, target.image.data);
-  } else {
-    target.image = new ImageData(target.warped, w, h); // a larger screen: the browser enlarges it
-  }
-  target.ctx.putImageData(target.image, 0, 0);
-  ctx.save();
-  ctx.imageSmoothingEnabled = false;
-  ctx.drawImage(target.canvas, 0, 0, target.image.width, target.image.height, box.left, box.top, box.width, box.height);
-  ctx.restore();
+  const shown = liveImage(target.warped, w, h, scene.imagePlace);
+  putPixels(ctx, target.holder, shown.data, shown.width, shown.height, scene.imagePlace.box);
 }
 
 export function drawHierarchy(ctx, scene, v) {

@@ -123,6 +123,12 @@ function rint(x) {
   return r - x === 0.5 && r % 2 !== 0 ? r - 1 : r;
 }
 
+// The picture as warpPerspective takes it, from homography_scenes.picture_data's base64 bytes.
+export function pictureFrom(p) {
+  const data = Uint8Array.from(atob(p.data), (c) => c.charCodeAt(0));
+  return { data, width: p.width, height: p.height, channels: p.channels };
+}
+
 // Twin: camlab.warp.warp_perspective(image, H, shape, interpolation, fill, method="numpy"): each
 // output pixel (u, v) samples the source at H^-1 (u, v, 1), bilinear or nearest, in float32 step for
 // step as numpy does it (Math.fround after each operation), source points beyond the line H sends to
@@ -209,4 +215,146 @@ export function nearestResize(src, sw, sh, dw, dh, out = null) {
     }
   }
   return target;
+}
+
+// ------------------------------------------------------------------ forward versus inverse warping
+
+// Twin: camlab.warp.forward_warp(image, H, shape, fill): each source pixel (u, v) pushed to the
+// rounded pi(H (u, v, 1)), floor(x + 0.5), in row order (a later pixel overwrites an earlier one);
+// output pixels no source pixel reaches keep `fill` (the holes). RGBA into `out`, alpha 255; a
+// one-channel image is repeated into R, G and B. `image` as for warpPerspective.
+export function forwardWarp(image, H, shape, fill = 0, out = null) {
+  const { width: sw, height: sh, channels: nc, data } = image;
+  const [h, w] = shape;
+  const target = out || new Uint8ClampedArray(h * w * 4);
+  const level = Math.min(255, Math.max(0, rint(fill)));
+  new Uint32Array(target.buffer, target.byteOffset, h * w).fill((0xff000000 | (level << 16) | (level << 8) | level) >>> 0);
+  for (let v = 0; v < sh; v++) {
+    for (let u = 0; u < sw; u++) {
+      const [x, y] = mapPoints(H, [[u, v]])[0];
+      if (!Number.isFinite(x) || !Number.isFinite(y)) continue;
+      const ui = Math.floor(x + 0.5), vi = Math.floor(y + 0.5);
+      if (ui < 0 || ui >= w || vi < 0 || vi >= h) continue;
+      const o = (vi * w + ui) * 4, i = (v * sw + u) * nc;
+      for (let c = 0; c < 3; c++) target[o + c] = data[i + (c % nc)];
+    }
+  }
+  return target;
+}
+
+// Twin: camlab.widgets.homographies.twins.covered_area(outline, shape): 1 where the pixel's centre
+// lies inside the convex polygon `outline` or on its edge (every (b - a) x (p - a) of one sign).
+export function coveredArea(outline, shape, out = null) {
+  const [h, w] = shape;
+  const mask = out || new Uint8Array(h * w);
+  const n = outline.length;
+  for (let v = 0; v < h; v++) {
+    for (let u = 0; u < w; u++) {
+      let pos = true, neg = true;
+      for (let k = 0; k < n; k++) {
+        const a = outline[k], b = outline[(k + 1) % n];
+        const side = (b[0] - a[0]) * (v - a[1]) - (b[1] - a[1]) * (u - a[0]);
+        pos = pos && side >= 0;
+        neg = neg && side <= 0;
+      }
+      mask[v * w + u] = pos || neg ? 1 : 0;
+    }
+  }
+  return mask;
+}
+
+// Twin: camlab.widgets.homographies.twins._painted_warps(forward, inverse, covered, reached, pulled,
+// hole, outside), in place on the RGBA warps: the forward warp's holes `hole`, beyond the picture
+// `outside` grey; the inverse warp `outside` where it pulled nothing. Masks: 1 byte a pixel.
+export function paintWarps(forward, inverse, covered, reached, pulled, hole, outside) {
+  for (let p = 0; p < covered.length; p++) {
+    const o = p * 4;
+    if (!covered[p]) forward.fill(outside, o, o + 3);
+    else if (!reached[p]) forward.set(hole, o);
+    if (!pulled[p]) inverse.fill(outside, o, o + 3);
+  }
+}
+
+// The first channel of an RGBA image as a mask (1 where it is not 0).
+function nonZero(rgba, out) {
+  for (let p = 0; p < out.length; p++) out[p] = rgba[p * 4] > 0 ? 1 : 0;
+  return out;
+}
+
+// Twin: camlab.widgets.homographies.twins.forward_inverse_view(values, picture, fixed): H = C S V P
+// (S the sliders' similarity, V the fixed tilt), the mapped outline, both warps as shown (RGBA) and
+// the covered, reached and pulled masks. `work` keeps the buffers between calls (optional).
+export function forwardInverseView(v, picture, fixed, work = {}) {
+  const S = hierarchyMatrix("similarity", { theta: v.angle * DEGREE, scale: v.scale });
+  const V = [[1, 0, 0], [0, 1, 0], [fixed.tilt[0], fixed.tilt[1], 1]];
+  const H = composeHomographies(fixed.C, S, V, fixed.P);
+  const [h, w] = fixed.shape;
+  if (!work.shown) {
+    const ones = { data: new Uint8Array(picture.width * picture.height).fill(1), width: picture.width, height: picture.height, channels: 1 };
+    Object.assign(work, { ones, shown: new Uint8ClampedArray(h * w * 4), inverse: new Uint8ClampedArray(h * w * 4), mark: new Uint8ClampedArray(h * w * 4) });
+    Object.assign(work, { covered: new Uint8Array(h * w), reached: new Uint8Array(h * w), pulled: new Uint8Array(h * w) });
+  }
+  const outline = mapPoints(H, fixed.edges);
+  coveredArea(outline, fixed.shape, work.covered);
+  nonZero(forwardWarp(work.ones, H, fixed.shape, 0, work.mark), work.reached);
+  nonZero(warpPerspective(work.ones, H, fixed.shape, "nearest", 0, work.mark), work.pulled);
+  forwardWarp(picture, H, fixed.shape, 0, work.shown);
+  warpPerspective(picture, H, fixed.shape, "nearest", 0, work.inverse);
+  paintWarps(work.shown, work.inverse, work.covered, work.reached, work.pulled, fixed.hole, fixed.outside);
+  return { H, outline, shown: work.shown, inverse: work.inverse, covered: work.covered, reached: work.reached, pulled: work.pulled };
+}
+
+// The rows top..top+height and columns left..left+width of an RGBA image `width` px wide.
+export function cropPixels(rgba, width, [top, left, height, cols]) {
+  const out = new Uint8ClampedArray(height * cols * 4);
+  for (let r = 0; r < height; r++) out.set(rgba.subarray(((top + r) * width + left) * 4, ((top + r) * width + left + cols) * 4), r * cols * 4);
+  return out;
+}
+
+// Twin: camlab.widgets._transport._nearest_at_centres(a, us, vs, box): the RGBA image `src` (sw x sh,
+// rows from the bottom up, as Agg takes them) sampled at the centres of the canvas pixels of box
+// [left, right, bottom, top] (display px, y up): column floor((x + 0.5 - us[0]) / (us[1] - us[0]) * sw),
+// row likewise from vs, clipped; the result's rows from the bottom up too.
+export function nearestAtCentres(src, sw, sh, us, vs, [left, right, bottom, top]) {
+  const dw = right - left, dh = top - bottom;
+  const pick = (x, lo, hi, n) => Math.min(Math.max(Math.floor(((x + 0.5 - lo) / (hi - lo)) * n), 0), n - 1);
+  const cols = Array.from({ length: dw }, (_, i) => pick(left + i, us[0], us[1], sw));
+  const out = new Uint8ClampedArray(dw * dh * 4);
+  for (let r = 0; r < dh; r++) {
+    const row = pick(bottom + r, vs[0], vs[1], sh) * sw;
+    for (let c = 0; c < dw; c++) {
+      for (let k = 0; k < 4; k++) out[(r * dw + c) * 4 + k] = src[(row + cols[c]) * 4 + k];
+    }
+  }
+  return out;
+}
+
+// An RGBA image's rows in the other order (top-down <-> bottom-up).
+function flipRows(rgba, width, height) {
+  const out = new Uint8ClampedArray(rgba.length), n = width * 4;
+  for (let r = 0; r < height; r++) {
+    for (let k = 0; k < n; k++) out[(height - 1 - r) * n + k] = rgba[r * n + k];
+  }
+  return out;
+}
+
+// Twin: what camlab.widgets._transport draws for an image shown with interpolation="nearest"
+// (show_at_display_resolution's set_data, then _screen_image): kept at most at its box's size
+// (nearestResize, cv2's nearest shrink), then, where the box is larger, each canvas pixel takes the
+// data pixel under its centre (nearestAtCentres). `place` is homography_scenes.image_place's: the
+// box (canvas px), the extent's unrounded edges us, vs (display px) and the canvas height.
+// Returns {data, width, height}: RGBA rows from the top, to draw at place.box.
+export function liveImage(rgba, width, height, place) {
+  const box = place.box;
+  let data = rgba, w = width, h = height;
+  const fw = Math.min(width, box.width), fh = Math.min(height, box.height);
+  if (fw >= 2 && fh >= 2 && (fw !== width || fh !== height)) {
+    data = nearestResize(rgba, width, height, fw, fh);
+    w = fw;
+    h = fh;
+  }
+  if (w === box.width && h === box.height) return { data, width: w, height: h };
+  const bottom = place.canvasHeight - box.top - box.height;
+  const up = nearestAtCentres(flipRows(data, w, h), w, h, place.us, place.vs, [box.left, box.left + box.width, bottom, bottom + box.height]);
+  return { data: flipRows(up, box.width, box.height), width: box.width, height: box.height };
 }

@@ -18,7 +18,17 @@ from . import canvas_height, line_style, marker_style, text_lines, text_style
 from .plane_scenes import boxed_text_scene
 from .scenes import plane_panel, spine_lines
 
-__all__ = ["haloed_line_style", "hierarchy_scene", "image_box", "picture_data"]
+__all__ = [
+    "drag_scene",
+    "forward_inverse_scene",
+    "haloed_marker_style",
+    "haloed_line_style",
+    "hierarchy_scene",
+    "image_box",
+    "image_place",
+    "patch_outline",
+    "picture_data",
+]
 
 
 def haloed_line_style(line: Any, px_per_point: float) -> dict:
@@ -45,6 +55,40 @@ def haloed_line_style(line: Any, px_per_point: float) -> dict:
         px_per_point,
         halo=to_hex(stroke["foreground"]),
         haloWidth=float(stroke["linewidth"]) * px_per_point,
+    )
+
+
+def _halo(artist: Any, px_per_point: float) -> dict:
+    """An artist's ``palette.halo`` (its one ``withStroke``) as ``halo`` (colour) and ``haloWidth`` (px)."""
+    stroke = artist.get_path_effects()[0]._gc  # noqa: SLF001 - withStroke keeps its linewidth and foreground here
+    return dict(
+        halo=to_hex(stroke["foreground"]), haloWidth=float(stroke["linewidth"]) * px_per_point
+    )
+
+
+def haloed_marker_style(line: Any, px_per_point: float) -> dict:
+    """:func:`~camlab.widgets.browser.marker_style` with the marker's halo (``palette.halo``).
+
+    Parameters
+    ----------
+    line : matplotlib.lines.Line2D
+        A line drawn with a round marker and one ``withStroke`` path effect.
+    px_per_point : float
+        Figure dpi / 72.
+
+    Returns
+    -------
+    dict
+        The marker's style (a face of "none" transparent, and ``hollow``), with ``halo`` and
+        ``haloWidth``.
+    """
+    face = line.get_markerfacecolor()
+    hollow = isinstance(face, str) and face == "none"
+    return dict(
+        marker_style(line, px_per_point),
+        color=to_hex(face, keep_alpha=True),
+        hollow=hollow,
+        **_halo(line, px_per_point),
     )
 
 
@@ -108,6 +152,126 @@ def image_box(image: Any) -> dict:
     )
 
 
+def image_place(image: Any) -> dict:
+    """Where the live canvas puts a pixelated image: its rounded box and its unrounded edges.
+
+    ``homography.js``'s ``liveImage`` repeats what ``widgets/_transport.py`` does with an image
+    shown with ``interpolation="nearest"``: kept at most at its box's size (OpenCV's nearest shrink),
+    then, where the box is larger, each canvas pixel takes the data pixel under its centre, found
+    from the extent's unrounded edges (``_nearest_at_centres``). For an image with row 0 at the top
+    and columns left to right (``imshow``'s default), inside its axes.
+
+    Parameters
+    ----------
+    image : matplotlib.image.AxesImage
+        The image, after the figure's layout is fixed.
+
+    Returns
+    -------
+    dict
+        ``box`` (:func:`image_box`), ``us`` and ``vs`` (the extent's edges in display px, left and
+        right, bottom and top: y up) and ``canvasHeight`` (the rows y is flipped about).
+    """
+    x0, x1, y0, y1 = image.get_extent()
+    row0_y = y1 if image.origin == "upper" else y0
+    (u_left, v_row0), (u_right, v_rown) = image.get_transform().transform(
+        [(x0, row0_y), (x1, y0 + y1 - row0_y)]
+    )
+    return dict(
+        box=image_box(image),
+        us=sorted((float(u_left), float(u_right))),
+        vs=sorted((float(v_row0), float(v_rown))),
+        canvasHeight=canvas_height(image.figure),
+    )
+
+
+def patch_outline(patch: Any) -> dict:
+    """An unfilled patch's outline as a closed canvas polyline with its look (``drawing.js``'s ``polyline``).
+
+    Parameters
+    ----------
+    patch : matplotlib.patches.Patch
+        The patch (a rectangle's frame), after the figure's layout is fixed.
+
+    Returns
+    -------
+    dict
+        ``points`` (its path's vertices, canvas px) and ``style`` (colour, width, joins, caps;
+        closed, snapped as matplotlib snaps it).
+    """
+    fig = patch.figure
+    xy = patch.get_transform().transform_path(patch.get_path()).vertices
+    caps = {"butt": "butt", "round": "round", "projecting": "square"}
+    return dict(
+        points=np.column_stack([xy[:, 0], canvas_height(fig) - xy[:, 1]]).tolist(),
+        style=dict(
+            color=to_hex(patch.get_edgecolor()),
+            width=patch.get_linewidth() * fig.dpi / 72.0,
+            dash=[],
+            join=patch.get_joinstyle(),
+            cap=caps[patch.get_capstyle()],
+            snap=patch.get_snap() is not False,
+            closed=True,
+        ),
+    )
+
+
+def forward_inverse_scene(
+    images: Mapping[str, Any], frames: Any, picture: np.ndarray, fixed: Mapping[str, Any]
+) -> dict:
+    """What ``forward_inverse.js`` needs to draw lesson 07's ``forward_vs_inverse`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    images : mapping
+        The four animated images by name: ``forward``, ``forward_zoom``, ``inverse_zoom``,
+        ``inverse`` (the zoomed ones with their window's extent).
+    frames : sequence of matplotlib.patches.Rectangle
+        The yellow frames of the zoomed window, over the forward and the inverse warp.
+    picture : (h, w, 3) uint8 ndarray
+        The picture the browser warps.
+    fixed : mapping
+        :func:`~camlab.widgets.homographies.twins.forward_inverse_fixed`'s constants.
+
+    Returns
+    -------
+    dict
+        The scene (JSON): the picture, the constants (with the holes' colour and the grey outside),
+        the zoomed window (top, left, height, width: output px) and, per panel in the order a full
+        draw paints them, its image's name and place, its frames and its spines.
+    """
+    zoom = images["forward_zoom"]
+    x0, x1, y0, y1 = zoom.get_extent()  # (left - 0.5, left + w - 0.5, top + h - 0.5, top - 0.5)
+    window = [round(y1 + 0.5), round(x0 + 0.5), round(y0 - y1), round(x1 - x0)]
+    panels = []
+    for name, image in images.items():
+        ax = image.axes
+        panels.append(
+            dict(
+                image=name,
+                place=image_place(image),
+                frames=[patch_outline(f) for f in frames if f.axes is ax],
+                spines=spine_lines(ax),
+                order=image.figure.axes.index(ax),
+            )
+        )
+    panels.sort(key=lambda p: p["order"])
+    return dict(
+        picture=picture_data(picture),
+        fixed=dict(
+            C=np.asarray(fixed["C"], float).tolist(),
+            P=np.asarray(fixed["P"], float).tolist(),
+            tilt=np.asarray(fixed["tilt"], float).tolist(),
+            edges=np.asarray(fixed["edges"], float).tolist(),
+            shape=[int(c) for c in fixed["shape"]],
+            hole=[int(c) for c in fixed["hole"]],
+            outside=int(fixed["outside"]),
+        ),
+        zoom=window,
+        panels=panels,
+    )
+
+
 def _each_text(text: Any, texts: Mapping[str, Mapping[str, str]]) -> dict:
     """Per group and kind, the text and where matplotlib puts its lines (the artist's text restored)."""
     shown = text.get_text()
@@ -163,7 +327,7 @@ def hierarchy_scene(
         panel=plane_panel(ax),
         picture=picture_data(picture),
         canvasShape=[int(c) for c in _fixed_shape(fixed)],
-        imageBox=image_box(fig.im),
+        imagePlace=image_place(fig.im),
         spines=spine_lines(ax),
         fill=255,
         fixed=_jsonable(fixed),
@@ -182,6 +346,74 @@ def hierarchy_scene(
             ),
             after=marker_style(fig.diagonal_art, pt),
             facts=text_style(fig.facts),
+            warning=warning,
+        ),
+    )
+
+
+def drag_scene(
+    axes: Any, art: Any, picture: np.ndarray, fixed: Mapping[str, Any], notes: Mapping[str, Any]
+) -> dict:
+    """What ``drag.js`` needs to draw lesson 07's ``drag_homography`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    axes : (2,) sequence of matplotlib.axes.Axes
+        The source picture's axes and the target's.
+    art : namespace
+        The moving artists (``_drag_artists``): ``sent_away``, ``im``, ``quad``,
+        ``mapped_line``, ``mapped_dots``, ``mapped_names``, ``handles``, ``chosen``, ``numbers``
+        and ``warning`` (its ``artist``, the note on a box).
+    picture : (h, w, 3) uint8 ndarray
+        The picture the browser warps.
+    fixed : mapping
+        :func:`~camlab.widgets.homographies.corner_twins.drag_view`'s constants.
+    notes : mapping
+        ``torn`` (the note on a torn picture), ``longest`` (a note of as many lines as any the
+        demo shows), ``margin`` (the corner sliders' stop short of a dent, px) and ``radius``
+        (how near a press picks a corner, px).
+
+    Returns
+    -------
+    dict
+        The scene (JSON).
+    """
+    ax_s, ax_t = axes
+    pt = ax_t.figure.dpi / 72.0
+    note = art.warning.artist
+    shown, visible = note.get_text(), note.get_visible()
+    note.set_text(notes["longest"])  # the box's look and lines, top-aligned: any note's first lines
+    try:
+        warning = boxed_text_scene(note)
+    finally:
+        note.set_text(shown)
+        note.set_visible(visible)
+    name = art.mapped_names[0]
+    return dict(
+        source=plane_panel(ax_s),
+        target=plane_panel(ax_t),
+        picture=picture_data(picture),
+        canvasShape=[int(c) for c in fixed["out_hw"]],
+        imagePlace=image_place(art.im),
+        fill=255,
+        spines=spine_lines(ax_t),
+        fixed={
+            k: (list(v) if k == "out_hw" else np.asarray(v, dtype=float).tolist())
+            for k, v in fixed.items()
+        },
+        names=[label.get_text() for label in art.mapped_names],
+        torn=notes["torn"],
+        margin=float(notes["margin"]),
+        radius=float(notes["radius"]),
+        styles=dict(
+            away=line_style(art.sent_away, pt),
+            quad=haloed_line_style(art.quad, pt),
+            mappedLine=haloed_line_style(art.mapped_line, pt),
+            mappedDots=marker_style(art.mapped_dots, pt),
+            handles=haloed_marker_style(art.handles, pt),
+            chosen=haloed_marker_style(art.chosen, pt),
+            names=dict(text_style(name), **_halo(name, pt)),
+            numbers=dict(text_style(art.numbers), **text_lines(art.numbers)),
             warning=warning,
         ),
     )

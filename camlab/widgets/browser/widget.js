@@ -6,11 +6,15 @@ import { drawThreeCameras } from "./three_cameras.js";
 import { drawDollyZoom } from "./dolly_zoom.js";
 import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
 import { drawHierarchy } from "./hierarchy.js";
+import { drawForwardInverse } from "./forward_inverse.js";
+import { dragCorners, drawDrag, followDrag } from "./drag.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
-// `drag(scene, [u, v])`, where a demo takes the mouse, turns a press or drag at figure pixel (u, v)
-// into the parameters to set (or null): set on the canvas, they reach the sliders by their links.
+// `drag(scene, [u, v], values, type)`, where a demo takes the mouse, turns a press ("pointerdown") or
+// drag at figure pixel (u, v) into the parameters to set (or null): set on the canvas, they reach the
+// sliders by their links. `follow(scene, name, values)`, where one control writes another (a corner
+// slider writes drag_homography's corners text), gives the parameters to set when `name` changed.
 const SCENES = {
   stack_check: { draw: drawStackCheck },
   similar_triangles: { draw: drawSimilarTriangles, drag: dragSimilarTriangles },
@@ -23,7 +27,25 @@ const SCENES = {
   conic_under_homography: { draw: drawConic },
   epipolar_lines: { draw: drawEpipolarLines, drag: dragEpipolarLines },
   transformation_hierarchy: { draw: drawHierarchy },
+  forward_vs_inverse: { draw: drawForwardInverse },
+  drag_homography: { draw: drawDrag, drag: dragCorners, follow: followDrag },
 };
+
+// The parameters' values by name, a choice's as its chosen option.
+function valuesOf(model, scene) {
+  const params = {};
+  for (const name of scene.params) params[name] = model.get(name);
+  for (const [name, options] of Object.entries(scene.choices || {})) params[name] = options[params[name]];
+  return params;
+}
+
+// Set parameters on the canvas (their links carry them to the controls and the kernel).
+function setValues(model, values) {
+  if (!values) return false;
+  for (const [name, value] of Object.entries(values)) model.set(name, value);
+  model.save_changes();
+  return true;
+}
 
 // A press, and a move with the button held, on the canvas set the parameters the demo's drag names.
 function listenToMouse(canvas, model) {
@@ -34,11 +56,7 @@ function listenToMouse(canvas, model) {
     const r = canvas.getBoundingClientRect();
     const u = ((event.clientX - r.left) * scene.width) / r.width;
     const v = ((event.clientY - r.top) * scene.height) / r.height;
-    const values = drag(scene, [u, v]);
-    if (!values) return;
-    event.preventDefault();
-    for (const [name, value] of Object.entries(values)) model.set(name, value);
-    model.save_changes();
+    if (setValues(model, drag(scene, [u, v], valuesOf(model, scene), event.type))) event.preventDefault();
   };
   canvas.addEventListener("pointerdown", (event) => {
     canvas.setPointerCapture(event.pointerId);
@@ -58,9 +76,7 @@ function render({ model, el }) {
   const draw = () => {
     const scene = model.get("scene");
     if (!ready || !scene || !scene.kind) return;
-    const params = {};
-    for (const name of scene.params) params[name] = model.get(name);
-    for (const [name, options] of Object.entries(scene.choices || {})) params[name] = options[params[name]];
+    const params = valuesOf(model, scene);
     ctx.setTransform(1, 0, 0, 1, 0, 0);
     ctx.clearRect(0, 0, canvas.width, canvas.height);
     ctx.setTransform(canvas.width / scene.width, 0, 0, canvas.height / scene.height, 0, 0);
@@ -85,7 +101,11 @@ function render({ model, el }) {
     };
     background.src = scene.background;
     for (const name of scene.params.filter((n) => !listening.has(n))) {
-      model.on(`change:${name}`, draw);
+      model.on(`change:${name}`, () => {
+        const now = model.get("scene");
+        const follow = SCENES[now.kind].follow;
+        if (!(follow && setValues(model, follow(now, name, valuesOf(model, now))))) draw(); // else drawn on its change
+      });
       listening.add(name);
     }
   };

@@ -8,7 +8,6 @@ from types import SimpleNamespace
 import cv2
 import ipywidgets as W
 import numpy as np
-from matplotlib.colors import to_rgb
 from matplotlib.patches import Rectangle
 
 from ... import fixtures, scenes
@@ -19,12 +18,14 @@ from ...projective import (
     map_points,
 )
 from ...robust import required_iterations
-from ...warp import forward_warp, warp_perspective
 from .._base import Demo, FigureView, build_demo, register, slider
+from ..browser import BrowserView
+from ..browser.homography_scenes import forward_inverse_scene
 from ..controls import (
     monospace,
 )
 from .notes import warning_note
+from .twins import forward_inverse_fixed, forward_inverse_view
 
 CONFIDENCE = 0.995  # RANSAC's confidence p in the demo
 MAX_SAMPLES = 1000  # RANSAC's cap on the samples drawn in the demo
@@ -298,25 +299,10 @@ def ransac_outliers() -> Demo:
 
 # ----------------------------------------------------------------------------- forward vs inverse
 
-HOLE_COLOUR = tuple(round(255 * c) for c in to_rgb(palette.HOLE))
-"""The forward warp's holes inside the area the picture covers: lime (palette.HOLE), a hue the picture
-does not contain, so holes never read as its dark border (outside the picture both panels are a mid
-grey, OUTSIDE_GREY)."""
-OUTSIDE_GREY = 128
 ZOOM = (108, 110, 18, 24)
 """The zoomed window of both warps: (top row, left column, height, width) in output pixels, on the
 door's edge against the wall at the default setting (and at the sweep's scales and angles), so the
 inverse crop shows an edge kept whole and the forward crop the same edge broken by holes."""
-
-
-def _painted(fwd, inv, inside, reached, pulled):
-    """The two warps as shown: the forward warp's holes lime, outside both pictures mid grey."""
-    shown = fwd.copy()
-    shown[inside & ~reached] = HOLE_COLOUR
-    shown[~inside] = OUTSIDE_GREY
-    inv = inv.copy()
-    inv[~pulled] = OUTSIDE_GREY
-    return shown, inv
 
 
 def _label_warp_axes(ax_f, ax_z, ax_zi, ax_i):
@@ -337,7 +323,10 @@ def forward_vs_inverse() -> Demo:
     about its centre, then warped into a 240 x 180 output twice, nearest neighbour both
     times: forward (:func:`camlab.warp.forward_warp`, each source pixel pushed to where H
     sends it) and inverse (:func:`camlab.warp.warp_perspective`, each output pixel pulled
-    from where H^-1 sends it).
+    from where H^-1 sends it). The area the picture covers is the output pixels whose centres
+    lie inside its mapped outline. In a kernel both warps are drawn in the browser, pixel by
+    pixel (``browser/forward_inverse.js``; their numpy twin
+    :func:`~camlab.widgets.homographies.twins.forward_inverse_view`).
 
     Returns
     -------
@@ -345,8 +334,8 @@ def forward_vs_inverse() -> Demo:
         The demo: controls ``scale`` and ``angle`` (the rotation, degrees), the figure (the
         forward warp with its holes lime green, the window :data:`ZOOM` of it and of the inverse
         warp enlarged, and the inverse warp; outside the picture both are grey) and ``state`` (``H``, source to output pixels,
-        and ``hole_fraction``, the share of the inverse warp's interior pixels, those whose
-        four neighbours are covered too, that the forward warp never reaches).
+        and ``hole_fraction``, the share of the covered area's interior pixels, those whose
+        eight neighbours are covered too, that the forward warp never reaches).
 
     References
     ----------
@@ -355,7 +344,8 @@ def forward_vs_inverse() -> Demo:
     """
     pic = scenes.house_picture((80, 60))
     out_hw = (180, 240)
-    view = FigureView(figsize=(10.5, 2.9))
+    fixed = forward_inverse_fixed(pic.shape, out_hw)
+    view = BrowserView(("scale", "angle"), figsize=(10.5, 2.9))
     ax_f, ax_z, ax_zi, ax_i = view.fig.subplots(1, 4, width_ratios=[1, 0.56, 0.56, 1])
     blank = np.zeros((*out_hw, 3), np.uint8)
     im_f = view.animate(ax_f.imshow(blank, interpolation="nearest"))
@@ -372,43 +362,34 @@ def forward_vs_inverse() -> Demo:
         for ax_ in (ax_z, ax_zi)
     )
     # animated after the image, or the live frame paints the picture over it
-    for ax_ in (ax_f, ax_i):
+    boxes = [
         view.animate(
             ax_.add_patch(
                 Rectangle((left - 0.5, top - 0.5), w, h, fill=False, ec=palette.YELLOW, lw=1.5)
             )
         )
+        for ax_ in (ax_f, ax_i)
+    ]
     _label_warp_axes(ax_f, ax_z, ax_zi, ax_i)
     readout = W.HTML()
-    ones = np.ones(pic.shape[:2], np.uint8)
 
     def update(v: dict, state: dict) -> None:
-        # the output's centre, (119.5, 89.5): pixel centres sit at integers
-        C = np.array([[1.0, 0, (out_hw[1] - 1) / 2], [0, 1, (out_hw[0] - 1) / 2], [0, 0, 1]])
-        P = np.array([[1.0, 0, -39.5], [0, 1, -29.5], [0, 0, 1]])
-        H = hg.compose(
-            C,
-            hg.similarity_homography(v["scale"], np.radians(v["angle"])),
-            hg.projective_homography(v=(1e-3, 0)),
-            P,
+        # both warps as shown (their twin forwardInverseView in the browser's homography.js)
+        g = forward_inverse_view(v, pic, fixed)
+        H, outline, shown, inv, reached, pulled = (
+            g.H,
+            g.outline,
+            g.shown,
+            g.inverse,
+            g.reached,
+            g.pulled,
         )
-        fwd = forward_warp(pic, H, out_hw)
-        inv = warp_perspective(
-            pic, H, out_hw, interpolation="nearest", method="cv2"
-        )  # same picture, fast
-
-        # the area the picture covers, from its mapped outline (one pixel in from the edge)
-        outline = map_points(H, np.array([[-0.5, -0.5], [79.5, -0.5], [79.5, 59.5], [-0.5, 59.5]]))
-        inside = np.zeros(out_hw, np.uint8)
-        cv2.fillPoly(inside, [np.round(outline).astype(np.int32)], 1)
-        inner = cv2.erode(inside, np.ones((3, 3), np.uint8)) > 0
-        reached = forward_warp(ones, H, out_hw) > 0
-        pulled = warp_perspective(ones, H, out_hw, interpolation="nearest", method="cv2") > 0
-        shown, inv = _painted(fwd, inv, inside > 0, reached, pulled)
         im_f.set_data(shown)
         im_z.set_data(shown[top : top + h, left : left + w])
         im_zi.set_data(inv[top : top + h, left : left + w])
         im_i.set_data(inv)
+        # the covered area one pixel in from its edge, where the holes are counted
+        inner = cv2.erode(g.covered.astype(np.uint8), np.ones((3, 3), np.uint8)) > 0
         holes = float(np.mean(~reached[inner])) if inner.any() else 0.0
         holes_inverse = float(np.mean(~pulled[inner])) if inner.any() else 0.0
         state.update(H=H, hole_fraction=holes, hole_fraction_inverse=holes_inverse)
@@ -427,7 +408,7 @@ def forward_vs_inverse() -> Demo:
         "scale": slider(2.0, 0.4, 3.0, 0.05, "scale"),
         "angle": slider(15.0, -45.0, 45.0, 1.0, "rotation (°)"),
     }
-    return build_demo(
+    demo = build_demo(
         "forward_vs_inverse",
         controls,
         view,
@@ -435,3 +416,8 @@ def forward_vs_inverse() -> Demo:
         title="Forward versus inverse warping",
         extra=[readout],
     )
+    images = dict(forward=im_f, forward_zoom=im_z, inverse_zoom=im_zi, inverse=im_i)
+    view.publish(
+        demo, forward_inverse_scene(images, boxes, pic, fixed)
+    )  # the browser draws the moves
+    return demo

@@ -10,19 +10,15 @@ import numpy as np
 
 from ... import homography as hg
 from ... import scenes
-from ..._validate import DegenerateError
 from ...plotting import palette
 from ...projective import (
-    clip_line,
     cross_ratio,
     map_points,
-    map_polyline,
-    splits_at_infinity,
 )
 from ...warp import warp_perspective
-from .._base import Demo, FigureView, build_demo, register, slider
+from .._base import Demo, build_demo, register, slider
 from ..browser import BrowserView
-from ..browser.homography_scenes import hierarchy_scene
+from ..browser.homography_scenes import drag_scene, hierarchy_scene
 from ..controls import (
     connect_corner_drag,
     convex_clamp,
@@ -30,8 +26,8 @@ from ..controls import (
     corner_text,
     format_corners,
     monospace,
-    parse_corners,
 )
+from .corner_twins import across_line, drag_table_text, drag_view, length_ratio, shown_measure
 from .notes import TORN_DRAG, TORN_SHORT, warning_note
 from .twins import diagonal_points as _diagonal_points
 from .twins import hierarchy_fixed, hierarchy_view
@@ -148,8 +144,13 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     rows = {
         "top-left angle (°)": (90.0, hg.mapped_angle(H, tl, tr - tl, bl - tl), 0.1, True),
         "|top| (px)": (pw - 1.0, length(0, 1), 1e-3, False),
-        "|top| / |left|": ((pw - 1) / (ph - 1), _ratio(length(0, 1), length(0, 3)), 1e-3, False),
-        "|top| / |bottom|": (1.0, _ratio(length(0, 1), length(3, 2)), 1e-3, False),
+        "|top| / |left|": (
+            (pw - 1) / (ph - 1),
+            length_ratio(length(0, 1), length(0, 3)),
+            1e-3,
+            False,
+        ),
+        "|top| / |bottom|": (1.0, length_ratio(length(0, 1), length(3, 2)), 1e-3, False),
         "top vs bottom edge (°)": (0.0, between(tl, bl, 0), 0.1, True),
         "left vs right edge (°)": (0.0, between(tl, tr, 1), 0.1, True),
         "cross-ratio, diagonal": (
@@ -165,27 +166,12 @@ def _hierarchy_measures(H: np.ndarray, picture_shape) -> dict:
     }
 
 
-def _ratio(a: float, b: float) -> float:
-    """Two lengths' ratio, either possibly infinite: inf / finite is inf, finite / inf is 0, inf / inf NaN.
-
-    One rule for both lesson 07 demos (the hierarchy's readout and the drag demo's table), which
-    show the NaN as *undefined*: two infinite lengths have no ratio.
-    """
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return float(np.divide(a, b))
-
-
-def _shown(x: float, spec: str) -> str:
-    """A measured value as the lesson 07 readouts print it: ∞ for an infinite length, *undefined* for ∞ / ∞."""
-    return f"{x:{spec}}" if np.isfinite(x) else ("∞" if x == np.inf else "undefined")
-
-
 def _measures_text(measures: dict) -> str:
     """The hierarchy readout's table of measured invariants: before, after, kept or changes."""
     lines = [f"{'measured on the picture':24s}{'source':>9s}{'mapped':>10s}"]
     for name, (a, b, kept) in measures.items():
         verdict = "kept" if kept else ("(∞ / ∞)" if np.isnan(b) else "changes")
-        lines.append(f"{name:24s}{a:9.3f}{_shown(b, '.3f'):>10s}  {verdict}")
+        lines.append(f"{name:24s}{a:9.3f}{shown_measure(b, '.3f'):>10s}  {verdict}")
     return "\n".join(lines)
 
 
@@ -448,6 +434,10 @@ CORNER_NAMES = (
     "bottom left",
 )  # of the source picture, SQUARE's order
 _DRAG_START = np.array([[40.0, 30.0], [250.0, 60.0], [230.0, 200.0], [60.0, 230.0]])
+DRAG_PARAMS = ("corners", "corner", "corner_u", "corner_v")
+"""The drag demo's controls, which the browser redraws on (the corners text and its keyboard twins)."""
+DRAG_RADIUS_PX = 15.0
+"""How near a press must be to a corner to pick it (figure px)."""
 SLIDER_MARGIN_PX = 40.0
 """How far short of a dent or bow tie the corner sliders stop a corner (px; typing or a drag go on)."""
 
@@ -477,19 +467,6 @@ def _matrix_text(M: np.ndarray, significant: int | None = None) -> str:
             M, formatter={"float_kind": lambda x: f"{x:>{significant + 6}.{significant}g}"}
         )
     return np.array2string(np.where(np.round(M, 4) == 0, 0.0, M), precision=4, suppress_small=True)
-
-
-def _across(points) -> np.ndarray:
-    """The unit offset (points, y up) across the line through ``points``, on its upper side (up for none)."""
-    finite = points[np.isfinite(points).all(axis=1)]
-    if len(finite) < 2:
-        return np.array([0.0, 1.0])
-    d = finite[-1] - finite[0]
-    e = np.array([d[0], -d[1]]) / max(
-        np.linalg.norm(d), 1e-9
-    )  # on screen: v points down, offsets up
-    perp = np.array([-e[1], e[0]])
-    return perp if perp[1] > 0 or (perp[1] == 0 and perp[0] > 0) else -perp
 
 
 def _off_canvas(points, out_hw) -> str:
@@ -522,100 +499,6 @@ def _drag_notes(labels, points, out_hw, H) -> str:
         + "\nH (h33 = 1, 5 significant digits) =\n"
         + _matrix_text(H / H[2, 2], significant=5)
     )
-
-
-def _place_names(labels, points, corners, out_hw) -> None:
-    """Put the names A'..D' beside their points, clear of the corner markers and of each other.
-
-    A name sits across the line A'D' from its point, on the side away from the nearest corner
-    marker (centred 13 points off, 20 across a vertical line, where the text is widest), or 17
-    points off a corner marker within 20 px, diagonally away from it and from the line. It is hidden where
-    its text would run off the canvas, where its point lies under a marker (within 4 px of a
-    corner), or within 14 px of a name already shown.
-
-    Parameters
-    ----------
-    labels : list of matplotlib.text.Annotation
-        The names, in the order of ``points``.
-    points : (4, 2) ndarray
-        The mapped points A'..D' (pixels; NaN or inf where mapped to infinity).
-    corners : (4, 2) ndarray
-        The corner markers (pixels).
-    out_hw : tuple of int
-        The canvas (height, width) in pixels.
-    """
-    shown = []
-    across = _across(points)
-    for label, p in zip(labels, points, strict=True):
-        label.xy = tuple(p)
-        gap = np.linalg.norm(corners - p, axis=1) if np.isfinite(p).all() else np.full(4, np.inf)
-        away = p - corners[np.argmin(gap)]
-        side = 1.0 if across @ (away[0], -away[1]) >= 0 else -1.0  # across, away from the marker
-        offset = tuple(
-            side * (13 + 7 * abs(across[0])) * across
-        )  # wider across a steep line: text is wide
-        if gap.min() < 20:  # away from the nearest marker (v points down, offsets up), off the line
-            d = np.array([away[0], -away[1]]) / max(np.linalg.norm(away), 1e-9) + side * across
-            offset = tuple(d / max(np.linalg.norm(d), 1e-9) * 17)
-        label.xyann = offset
-        visible = bool(
-            np.isfinite(p).all()
-            and 12 <= p[0] <= out_hw[1] - 12
-            and 12 <= p[1] <= out_hw[0] - 4
-            and gap.min() >= 4
-            and all(np.linalg.norm(p - q) >= 14 for q in shown)
-        )
-        label.set_visible(visible)
-        if visible:
-            shown.append(p)
-
-
-def drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, angle0, angle1) -> list:
-    """The drag demo's table: (quantity, source, image, verdict) with the verdict computed.
-
-    "kept" when the two numbers agree within 0.1 % (0.1° for the angle), else "changes":
-    the cross-ratio is always kept; an affine H (a parallelogram target) also keeps the
-    ratio of lengths along the line, and the top-left angle stays 90° when the target's corner
-    there is a right angle (a rectangle, for one, whatever its H).
-
-    Parameters
-    ----------
-    cr0, cr1 : float
-        The cross-ratio of the four points on the line, in the source and in the image.
-    length0, length1 : float
-        |AD| in pixels, in the source and in the image (inf where the image of AD runs
-        through infinity, shown as ∞).
-    ratio0, ratio1 : float
-        |AB| / |CD|, in the source and in the image (:func:`_ratio`: inf or 0 where one of the two
-        segments runs through infinity, NaN, shown as *undefined*, where both do).
-    angle0, angle1 : float
-        The top-left corner's angle in degrees, in the source and in the image.
-
-    Returns
-    -------
-    list of tuple of str
-        One row per quantity: (name, source value, image value, "kept" or "changes").
-    """
-
-    def verdict(same: bool) -> str:
-        return "kept" if same else "changes"
-
-    return [
-        ("cross-ratio", f"{cr0:.4f}", f"{cr1:.4f}", verdict(np.isclose(cr0, cr1, rtol=1e-3))),
-        (
-            "|AD| (px)",
-            f"{length0:.1f}",
-            _shown(length1, ".1f"),
-            verdict(np.isclose(length0, length1, rtol=1e-3)),
-        ),
-        (
-            "|AB| / |CD|",
-            f"{ratio0:.4f}",
-            _shown(ratio1, ".4f"),
-            verdict(np.isclose(ratio0, ratio1, rtol=1e-3)),
-        ),
-        ("top-left angle", f"{angle0:.1f}°", f"{angle1:.1f}°", verdict(abs(angle0 - angle1) < 0.1)),
-    ]
 
 
 def _dense_outline(quad: np.ndarray) -> np.ndarray:
@@ -696,37 +579,20 @@ def _drag_artists(view, ax_s, ax_t, out_hw) -> SimpleNamespace:
     )
 
 
-def _drag_measures(line_pts, m, H) -> tuple:
-    """What the drag demo's table compares: cross-ratio, |AD|, |AB| / |CD| and the top-left angle.
-
-    A segment whose ends H sends to opposite sides of the line at infinity (w of opposite signs)
-    maps through infinity: its image is infinitely long, not the finite segment between the two
-    mapped ends. Returns the measures (for the demo's state) and the table's rows
-    (:func:`drag_table_rows`).
-    """
-    w = np.c_[line_pts, np.ones(4)] @ H[2]
-
-    def image_length(i: int, j: int) -> float:
-        return float(np.linalg.norm(m[j] - m[i])) if w[i] * w[j] > 0 else np.inf
-
-    cr0, cr1 = cross_ratio(line_pts), cross_ratio(m)
-    length0, length1 = float(np.linalg.norm(line_pts[3] - line_pts[0])), image_length(0, 3)  # |AD|
-    ratio0 = np.linalg.norm(line_pts[1] - line_pts[0]) / np.linalg.norm(line_pts[3] - line_pts[2])
-    ratio1 = _ratio(image_length(0, 1), image_length(2, 3))
-    # the angle between the mapped edges' tangents at the mapped corner (not the chords to the
-    # target corners, which point backwards along an edge that passes through infinity)
-    angle = hg.mapped_angle(H, SQUARE[0], SQUARE[1] - SQUARE[0], SQUARE[3] - SQUARE[0])
-    rows = drag_table_rows(cr0, cr1, length0, length1, ratio0, ratio1, 90.0, angle)
-    measures = dict(
-        cross_ratio_source=cr0,
-        cross_ratio_image=cr1,
-        length_source=length0,
-        length_image=length1,
-        length_ratio_source=ratio0,
-        length_ratio_image=ratio1,
-        corner_angle=angle,
-    )
-    return measures, rows
+def _show_drag_view(art, g, warped, chosen: int) -> None:
+    """Move the drag demo's artists to ``g`` (:func:`.corner_twins.drag_view`), the picture ``warped`` by its H."""
+    art.warning(TORN_DRAG if g.torn else "")
+    # H^T l_inf = (h31, h32, h33): the source line that H sends to infinity (drawn if in view)
+    art.sent_away.set_data(g.away[:, 0], g.away[:, 1])
+    art.im.set_data(warped)
+    art.mapped_line.set_data(g.dense[:, 0], g.dense[:, 1])
+    art.mapped_dots.set_data(g.mapped[:, 0], g.mapped[:, 1])
+    for label, p, offset, shown in zip(art.mapped_names, g.mapped, *g.names, strict=True):
+        label.xy, label.xyann = tuple(p), tuple(offset)
+        label.set_visible(bool(shown))
+    art.quad.set_data(g.outline[:, 0], g.outline[:, 1])
+    art.handles.set_data(g.corners[:, 0], g.corners[:, 1])
+    art.chosen.set_data(g.corners[chosen, :1], g.corners[chosen, 1:])
 
 
 def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
@@ -742,12 +608,31 @@ def _drag_axes(ax_s, ax_t, pic, out_hw) -> None:
     ax_t.set_title("drag a corner, or use the sliders", fontsize=10, pad=3)
 
 
+def _drag_fixed(picture_shape, out_hw) -> dict:
+    """The drag demo's constants (:func:`.corner_twins.drag_view`'s ``fixed``).
+
+    Four collinear points A..D on the picture's diagonal (their cross-ratio is the invariant), the
+    line and the picture's outline sampled densely, the picture's edges and the target canvas.
+    """
+    ph, pw = picture_shape[:2]
+    line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [140.0, 107.5]])
+    return dict(
+        square=SQUARE,
+        line=line_pts,
+        line_dense=line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0]),
+        square_dense=_dense_outline(SQUARE),
+        xlim=(-0.5, pw - 0.5),
+        ylim=(-0.5, ph - 0.5),
+        out_hw=out_hw,
+    )
+
+
 def _drag_line_names(ax_s, line_pts) -> None:
     """The points A..D on the source picture's diagonal, with their names."""
     ax_s.plot(*line_pts.T, "o-", color=palette.BROWN, ms=5, lw=1.5, path_effects=palette.halo(1.5))
     # centred across the line, clear of its halo and dots: B, C, D above it (below B lies the
     # bow tie's dashed line, below D the frame), A to its right (left of A is the dark border)
-    across = _across(line_pts)
+    across = across_line(line_pts)
     offsets = [(15.0, 0.0), *(tuple(k * across) for k in (18, 18, 16))]
     for name, p, offset in zip("ABCD", line_pts, offsets, strict=True):
         ax_s.annotate(
@@ -819,16 +704,12 @@ def drag_homography() -> Demo:
        direct linear transformation).
     """
     pic = scenes.house_picture()
-    ph, pw = pic.shape[:2]
     out_hw = (260, 300)
-    view = FigureView(figsize=(9, 4.6))
+    view = BrowserView(DRAG_PARAMS, figsize=(9, 4.6), choices=("corner",), texts=("corners",))
     ax_s, ax_t = view.fig.subplots(1, 2, width_ratios=[1, 1.6])
     _drag_axes(ax_s, ax_t, pic, out_hw)
-    # Four collinear points on the picture's diagonal (their cross-ratio is the invariant).
-    line_pts = np.array([[10.0, 10.0], [50.0, 40.0], [90.0, 70.0], [140.0, 107.5]])
-    line_dense = line_pts[0] + np.linspace(0, 1, 80)[:, None] * (line_pts[3] - line_pts[0])
-    square_dense = _dense_outline(SQUARE)
-    _drag_line_names(ax_s, line_pts)
+    fixed = _drag_fixed(pic.shape, out_hw)  # A..D on the diagonal, their cross-ratio the invariant
+    _drag_line_names(ax_s, fixed["line"])
     art = _drag_artists(view, ax_s, ax_t, out_hw)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
@@ -836,43 +717,29 @@ def drag_homography() -> Demo:
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:
-        try:
-            corners = parse_corners(v["corners"])
-            H = hg.estimate_homography(SQUARE, corners)
-        except (ValueError, DegenerateError) as exc:
-            state.update(error=str(exc))
-            art.warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(str(exc), 55)[:3]))
-            readout.value = monospace(f"cannot use these corners:\n{exc}")
+        # the per-move geometry (its twin dragView in the browser's corners.js)
+        g = drag_view(v, fixed)
+        if g.error is not None:
+            state.update(error=g.error)
+            art.warning("cannot use these corners:\n" + "\n".join(textwrap.wrap(g.error, 55)[:3]))
+            readout.value = monospace(f"cannot use these corners:\n{g.error}")
             return
+        corners, H, m = g.corners, g.H, g.mapped
         current["corners"] = corners
-        torn = splits_at_infinity(H, SQUARE)
-        art.warning(TORN_DRAG if torn else "")
-        # H^T l_inf = (h31, h32, h33): the source line that H sends to infinity (drawn if in view)
-        away = clip_line(H[2], (-0.5, pw - 0.5), (-0.5, ph - 0.5))
-        art.sent_away.set_data(away[:, 0], away[:, 1])
-        art.im.set_data(warp_perspective(pic, H, out_hw, method="cv2", fill=255))
-        m = map_points(H, line_pts)
-        dense = map_polyline(H, line_dense)  # broken where it passes through infinity
-        art.mapped_line.set_data(dense[:, 0], dense[:, 1])
-        art.mapped_dots.set_data(m[:, 0], m[:, 1])
-        _place_names(art.mapped_names, m, corners, out_hw)
-        outline = map_polyline(H, square_dense)
-        art.quad.set_data(outline[:, 0], outline[:, 1])
-        art.handles.set_data(corners[:, 0], corners[:, 1])
-        art.chosen.set_data(corners[v["corner"], :1], corners[v["corner"], 1:])
-        measures, rows = _drag_measures(line_pts, m, H)
+        _show_drag_view(
+            art, g, warp_perspective(pic, H, out_hw, method="cv2", fill=255), v["corner"]
+        )
+        measures, rows = g.measures
         state.update(
             H=H,
             error=None,
-            torn=torn,
+            torn=g.torn,
             corner=v["corner"],
             corners=corners,
             verdicts={name: verdict for name, _, _, verdict in rows},
             **measures,
         )
-        table = f"{'measured':15s}  source    image\n" + "\n".join(
-            f"{name:15s} {a:>7s}  {b:>7s}  {verdict}" for name, a, b, verdict in rows
-        )
+        table = drag_table_text(rows)
         art.numbers.set_text(table)
         readout.value = monospace(table + _drag_notes(art.mapped_names, m, out_hw, H))
 
@@ -885,5 +752,14 @@ def drag_homography() -> Demo:
         extra=[readout],
         linked=keys,
     )
-    demo.handlers.update(connect_corner_drag(view, ax_t, control, lambda: current["corners"]))
+    demo.handlers.update(
+        connect_corner_drag(
+            view, ax_t, control, lambda: current["corners"], radius_px=DRAG_RADIUS_PX
+        )
+    )
+    longest = "cannot use these corners:\n" + "\n".join(["x"] * 3)  # as many lines as TORN_DRAG
+    notes = dict(torn=TORN_DRAG, longest=longest, margin=SLIDER_MARGIN_PX, radius=DRAG_RADIUS_PX)
+    view.publish(
+        demo, drag_scene((ax_s, ax_t), art, pic, fixed, notes)
+    )  # the browser draws the moves
     return demo
