@@ -138,6 +138,8 @@ def _context(K, R1, t1, R2, t2, X, sigma):
         probability=0.5 * erfc(gap / sqrt(2)),
         no_divide=np.sqrt(np.sum(offsets(divide=False) ** 2)) / 2 / sigma,
         per_corner_noise=whole / 2 / (sqrt(2) * sigma),
+        half_inside=whole / sqrt(2) / sigma,
+        K_T=np.sqrt(np.sum(offsets(K=K.T) ** 2)) / 2 / sigma,
     )
 
 
@@ -231,6 +233,18 @@ _MISTAKES = (
         lambda c: c.per_corner_noise,
         "you divided by sqrt(2) sigma, the noise of a corner's 2-D position: sigma is the noise of EACH "
         "pixel coordinate, and the distance already sums all 2N coordinates, so divide by sigma itself.",
+    ),
+    Mistake(
+        "half inside the root",
+        lambda c: c.half_inside,
+        "you halved inside the square root, sqrt(sum of squares / 2): the gap is HALF the distance, "
+        "sqrt(sum of the squared offsets) / 2, so halve after taking the root.",
+    ),
+    Mistake(
+        "K transposed",
+        lambda c: c.K_T,
+        "you multiplied by K on the wrong side (X_c @ K): for points as rows the pixels are "
+        "X_c @ K.T, the row form of K X_c.",
     ),
     Mistake(
         "the probability",

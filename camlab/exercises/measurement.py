@@ -325,10 +325,22 @@ def _reach_context(f, B, s, e):
         root2_sigma=float(np.sqrt(e * f * B / (np.sqrt(2) * s))),
         f_outside=float(np.sqrt(e * B / s) * f),
         plane_law=e * f / s,  # sigma = Z sigma_d / f solved for Z: the on-plane law, no B
+        truncated=float(int(right)) if right % 1 > 1e-3 else None,
+        rounded=float(round(right)) if abs(right - round(right)) > 1e-3 else None,
     )
 
 
 _REACH_MISTAKES = (
+    Mistake(
+        "truncated",
+        lambda c: c.truncated,
+        "you truncated the depth to whole metres (int(...)): return the float itself, sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "rounded",
+        lambda c: c.rounded,
+        "you rounded the depth to whole metres: return the float itself, sqrt(max_error f B / sigma_d).",
+    ),
     Mistake(
         "no root",
         lambda c: c.linear,
