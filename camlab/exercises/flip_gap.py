@@ -283,6 +283,8 @@ register_exercise(
             (_variant("no square root"), "square root"),
             (_variant("gap squared"), "gap squared"),
             (_variant("no half"), "MIDPOINT"),
+            (_variant("half inside the root"), "inside the square root"),
+            (_variant("K transposed"), "wrong side"),
             (_variant("rms per coordinate"), "OpenCV's rms"),
             (_variant("rms per corner"), "rms offset per corner"),
             (_variant("mean per corner"), "averaged each corner"),

@@ -543,6 +543,7 @@ register_exercise(
             (_reach_variant("no root"), "forgot the square root"),
             (_reach_variant("no root"), "linear in Z"),
             (_reach_variant("plane law"), "ON-PLANE law"),
+            (_reach_variant("truncated"), "truncated the depth"),
             (_reach_variant("sigma_d and max_error swapped"), "swapped sigma_d and max_error"),
             (_reach_variant("cube root"), "cube root"),
             (_reach_variant("inverted"), "upside down"),

@@ -299,6 +299,8 @@ register_exercise(
         wrong_variants=(
             (_variant("first order"), "first-order law"),
             (_variant("t_z for Z"), "optical axis"),
+            (_variant("depth of the segment"), "not the distance to the PLANE"),
+            (_variant("K transposed"), "with K.T"),
             (_variant("|t| for Z"), "board's origin"),
             (_variant("sign"), "abs on C_z"),
             (_variant("millimetres"), "1000 times"),
