@@ -6,7 +6,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from camlab.widgets.measure_the_world import click_to_measure  # noqa: E402
+from camlab.widgets.measure_the_world import SIGMA_PX, click_to_measure  # noqa: E402
 
 
 def test_clicks_measure_a_length_then_an_area_and_start_again():
@@ -57,3 +57,18 @@ def test_ray_angle_follows_the_two_laws():
     assert (
         demo.state["in_frame"] is False
     )  # nearly parallel rays: the readout says the ellipse leaves the frame
+
+
+def test_flip_pose_gives_section_2b_gaps():
+    from camlab.widgets.flip_pose import flip_pose
+
+    demo = flip_pose()  # the 5 cm tag at 1.5 m and 20 deg: 0.7 sigma, the cameras 1026 mm apart
+    assert abs(demo.state["gap"] - 0.72) < 0.01 and abs(demo.state["dC_mm"] - 1026) < 1
+    assert demo.state["largest_px"] < SIGMA_PX
+    demo.set(target="board (54 corners)")  # the board there: 13.3 sigma, never flips
+    assert abs(demo.state["gap"] - 13.28) < 0.01 and demo.state["rule"] < 1e-30
+    demo.set(tilt=2.0)  # near head-on: the rule's 8.5 %, the camera 105 mm off
+    assert abs(demo.state["rule"] - 0.085) < 0.001 and abs(demo.state["dC_mm"] - 105) < 1
+    curve = demo.figure.axes[1].lines[1].get_ydata()
+    demo.set(distance=0.6)  # closer: the whole curve rises
+    assert np.all(demo.figure.axes[1].lines[1].get_ydata() > curve)

@@ -138,6 +138,8 @@ def _context(K, R1, t1, R2, t2, X, sigma):
         probability=0.5 * erfc(gap / sqrt(2)),
         no_divide=np.sqrt(np.sum(offsets(divide=False) ** 2)) / 2 / sigma,
         per_corner_noise=whole / 2 / (sqrt(2) * sigma),
+        half_inside=whole / sqrt(2) / sigma,
+        K_T=np.sqrt(np.sum(offsets(K=K.T) ** 2)) / 2 / sigma,
     )
 
 
@@ -233,6 +235,18 @@ _MISTAKES = (
         "pixel coordinate, and the distance already sums all 2N coordinates, so divide by sigma itself.",
     ),
     Mistake(
+        "half inside the root",
+        lambda c: c.half_inside,
+        "you halved inside the square root, sqrt(sum of squares / 2): the gap is HALF the distance, "
+        "sqrt(sum of the squared offsets) / 2, so halve after taking the root.",
+    ),
+    Mistake(
+        "K transposed",
+        lambda c: c.K_T,
+        "you multiplied by K on the wrong side (X_c @ K): for points as rows the pixels are "
+        "X_c @ K.T, the row form of K X_c.",
+    ),
+    Mistake(
         "the probability",
         lambda c: c.probability,
         "you returned Phi(-gap), the rule's chance of a flip: the question is the gap itself, in sigma.",
@@ -269,6 +283,8 @@ register_exercise(
             (_variant("no square root"), "square root"),
             (_variant("gap squared"), "gap squared"),
             (_variant("no half"), "MIDPOINT"),
+            (_variant("half inside the root"), "inside the square root"),
+            (_variant("K transposed"), "wrong side"),
             (_variant("rms per coordinate"), "OpenCV's rms"),
             (_variant("rms per corner"), "rms offset per corner"),
             (_variant("mean per corner"), "averaged each corner"),

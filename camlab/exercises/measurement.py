@@ -325,10 +325,22 @@ def _reach_context(f, B, s, e):
         root2_sigma=float(np.sqrt(e * f * B / (np.sqrt(2) * s))),
         f_outside=float(np.sqrt(e * B / s) * f),
         plane_law=e * f / s,  # sigma = Z sigma_d / f solved for Z: the on-plane law, no B
+        truncated=float(int(right)) if right % 1 > 1e-3 else None,
+        rounded=float(round(right)) if abs(right - round(right)) > 1e-3 else None,
     )
 
 
 _REACH_MISTAKES = (
+    Mistake(
+        "truncated",
+        lambda c: c.truncated,
+        "you truncated the depth to whole metres (int(...)): return the float itself, sqrt(max_error f B / sigma_d).",
+    ),
+    Mistake(
+        "rounded",
+        lambda c: c.rounded,
+        "you rounded the depth to whole metres: return the float itself, sqrt(max_error f B / sigma_d).",
+    ),
     Mistake(
         "no root",
         lambda c: c.linear,
@@ -531,6 +543,7 @@ register_exercise(
             (_reach_variant("no root"), "forgot the square root"),
             (_reach_variant("no root"), "linear in Z"),
             (_reach_variant("plane law"), "ON-PLANE law"),
+            (_reach_variant("truncated"), "truncated the depth"),
             (_reach_variant("sigma_d and max_error swapped"), "swapped sigma_d and max_error"),
             (_reach_variant("cube root"), "cube root"),
             (_reach_variant("inverted"), "upside down"),

@@ -114,6 +114,10 @@ def _context(K, R, t, a, b, length):
         return Z * (1 - length / L_r)
 
     forward = [(H @ [*p, 1.0])[:2] / (H @ [*p, 1.0])[2] for p in (a, b)]
+    on_plane = np.linalg.solve(H, np.array([[*a, 1.0], [*b, 1.0]]).T)
+    mid = np.r_[
+        (on_plane[:2] / on_plane[2]).mean(axis=1), 0.0
+    ]  # the segment's midpoint as read on the plane
     return SimpleNamespace(
         right=h(),
         first_order=Z * (L_read / length - 1),
@@ -134,10 +138,26 @@ def _context(K, R, t, a, b, length):
         C_R=h(Z=Z_rt),
         rows=h(read(H_of(R[0], R[1]))),
         R_T=h(read(H_of(R[0], R[1])), Z_rt),
+        depth_mid=h(Z=(R @ mid + t)[2]),
+        depth_centre=h(Z=(R @ [0.1, 0.0625, 0.0] + t)[2]),
+        K_T=h(read(K.T @ np.column_stack([R[:, 0], R[:, 1], t]))),
     )
 
 
+_DEPTH_HINT = (
+    "you took Z as a board point's depth along the optical axis, z_c of R X + t: that is not the "
+    "distance to the PLANE unless the camera looks straight down. Take Z = |C_z|, the camera centre "
+    "C = -R^T t in the board frame."
+)
+
 _MISTAKES = (
+    Mistake("depth of the segment", lambda c: c.depth_mid, _DEPTH_HINT),
+    Mistake("depth of the board centre", lambda c: c.depth_centre, _DEPTH_HINT),
+    Mistake(
+        "K transposed",
+        lambda c: c.K_T,
+        "you built H with K.T: the plane maps to the pixels by H = K [r1 r2 t], K on the left, untransposed.",
+    ),
     Mistake(
         "first order",
         lambda c: c.first_order,
@@ -279,6 +299,8 @@ register_exercise(
         wrong_variants=(
             (_variant("first order"), "first-order law"),
             (_variant("t_z for Z"), "optical axis"),
+            (_variant("depth of the segment"), "not the distance to the PLANE"),
+            (_variant("K transposed"), "with K.T"),
             (_variant("|t| for Z"), "board's origin"),
             (_variant("sign"), "abs on C_z"),
             (_variant("millimetres"), "1000 times"),
