@@ -134,7 +134,7 @@ def _parallax_figure():
     return view, rings, gaps, seen
 
 
-@register(lesson="07", sweep={"move": [0.0, -0.6, 0.6], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
+@register(lesson="07", sweep={"move": [0.0, -0.4, 0.4], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
 def plane_parallax() -> Demo:
     r"""Move and turn camera 2: the plane's homography, and the parallax of points off the plane.
 
