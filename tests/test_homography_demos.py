@@ -325,11 +325,11 @@ def test_plane_parallax_demo_is_zero_on_the_plane_and_for_a_turning_camera():
     readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
     assert len(readouts) == 1 and "|1/Z - 1/d|" in readouts[0]
     d.set(
-        plane=3.0, move=-0.6
-    )  # points leave the image: the medians count the rays in view at every depth
-    assert d.state["outside"][1.5] == 6 and d.state["outside"][3.0] == 0 and d.state["common"] <= 6
+        plane=3.0, move=0.4
+    )  # the slider's end: points leave the image, the medians count the rays in view at every depth
+    assert d.state["outside"][1.5] == 4 and d.state["outside"][3.0] == 0 and d.state["common"] <= 8
     readouts = [w.value for w in d.widget.children[0].children if "median parallax" in str(w.value)]
-    assert "6 of 12 rays left out (point or ring outside)" in readouts[0]
+    assert "4 of 12 rays left out (point or ring outside)" in readouts[0]
     assert f"over the {d.state['common']} rays in view at all three depths" in readouts[0]
 
 
@@ -599,7 +599,7 @@ def test_parallax_demo_nests_coinciding_marks_and_draws_none_outside_the_image()
     default_sizes = [m.get_markersize() for m in seen]
     d.set(move=0.0)  # a turning camera: the three depths coincide, so nest 11 / 7 / 4
     assert [m.get_markersize() for m in seen] == [11, 7, 4]
-    d.set(move=0.6)  # points leave the image: they are counted, not drawn half-clipped
+    d.set(move=0.4)  # the slider's end: points leave the image, counted, not drawn half-clipped
     assert [m.get_markersize() for m in seen] == default_sizes
     assert d.state["outside"][1.5] > 0
     for m in marks:

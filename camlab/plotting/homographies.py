@@ -446,7 +446,16 @@ def draw_verdicts(
 
 
 def draw_overlay(
-    overlay, crops, title, side=None, side_title="", brighten=False, mark_u=None, crop=(80, 60)
+    overlay,
+    crops,
+    title,
+    side=None,
+    side_title="",
+    brighten=False,
+    mark_u=None,
+    crop=(80, 60),
+    covered=None,
+    outline=None,
 ):
     """A red-cyan overlay of two registered photos, with crops of it enlarged.
 
@@ -470,6 +479,12 @@ def draw_overlay(
         A column marked by a dotted line on the overlay (where a region starts).
     crop : tuple of int
         The crops' (width, height) in pixels.
+    covered : (H, W) bool ndarray, optional
+        The pixels the second photo covers; the rest is drawn black, so "not covered" never
+        reads as the grey of "the two agree".
+    outline : (K, 2) ndarray, optional
+        The second photo's frame brought into the first's (a closed polygon, px), drawn white
+        and dashed with a black edge.
 
     Returns
     -------
@@ -477,6 +492,9 @@ def draw_overlay(
         Axes in order: the side photo (if any), the overlay, then one per crop.
     """
     w, h = crop
+    if covered is not None:
+        overlay = overlay.copy()
+        overlay[~covered] = 0
     if side is not None:
         fig = plt.figure(figsize=(10, 6.6), layout="constrained")
         top, bottom = fig.subfigures(2, 1, height_ratios=[1.35, 1])
@@ -488,8 +506,16 @@ def draw_overlay(
     else:
         fig = plt.figure(figsize=(10, 3.9), layout="constrained")
         ax_o, *zooms = fig.subplots(1, 1 + len(crops), width_ratios=[1.5] + [1] * len(crops))
-    ax_o.imshow(overlay // 2 + 110 if brighten else overlay)
+    shown = overlay // 2 + 110 if brighten else overlay
+    if covered is not None:
+        shown[~covered] = 0  # black: no second photo here
+    ax_o.imshow(shown)
     ax_o.set_title(title, fontsize=10)
+    if outline is not None:
+        ax_o.plot(
+            *np.asarray(outline).T, "--", color="w", lw=1.6, path_effects=palette.halo(1.6, "k")
+        )
+        ax_o.set(xlim=(-0.5, overlay.shape[1] - 0.5), ylim=(overlay.shape[0] - 0.5, -0.5))
     if mark_u is not None:
         ax_o.axvline(mark_u, color="k", ls=":", lw=1.2, path_effects=palette.halo(1.2))
     for ax, (name, (u0, v0)) in zip(zooms, crops.items(), strict=True):

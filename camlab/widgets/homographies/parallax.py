@@ -134,7 +134,7 @@ def _parallax_figure():
     return view, rings, gaps, seen
 
 
-@register(lesson="07", sweep={"move": [0.0, -0.6, 0.6], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
+@register(lesson="07", sweep={"move": [0.0, -0.4, 0.4], "turn": [0.0, 20.0], "plane": [1.5, 6.0]})
 def plane_parallax() -> Demo:
     r"""Move and turn camera 2: the plane's homography, and the parallax of points off the plane.
 
@@ -197,7 +197,7 @@ def plane_parallax() -> Demo:
         readout.value = monospace("\n".join(lines))
 
     controls = {
-        "move": slider(0.2, -0.6, 0.6, 0.05, "camera 2 moves (m)"),
+        "move": slider(0.2, -0.4, 0.4, 0.05, "camera 2 moves (m)"),
         "turn": slider(14.3, 0.0, 20.0, 0.1, "camera 2 turns (°)"),
         "plane": slider(3.0, 1.5, 6.0, 0.1, "plane distance d (m)"),
     }
