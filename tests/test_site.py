@@ -34,8 +34,9 @@ DEMO_CALL = re.compile(r"\bdemos\.(\w+)\(")
 FIGURE_CALL = re.compile(r"\bplt\.(subplots|figure)\(")
 # 3.3 MB a lesson: 30 MB was set for twelve lessons (about 2.5 each); with lesson 12 the site
 # measured 32.3 MB, and 39.2 MB after the tenth review session's figures and demos (lessons 09,
-# 11, 12), mostly photographs inside figures
-MAX_BYTES = 3.3e6 * len(LESSONS)
+# 11, 12), mostly photographs inside figures; 43.0 MB after the twelfth session's real-photo
+# figures (lesson 09's real building panorama and its zooms, lesson 12's stereo rig and Middlebury)
+MAX_BYTES = 3.5e6 * len(LESSONS)
 MAX_BUILD_S = 180
 
 
