@@ -102,7 +102,7 @@ test-py3%:
 # newest matplotlib; 3.9.4 draws three more demos differently (disparity_depth, full_panorama,
 # parallax_ghosting, 0.1-0.3 % of pixels), which issues 28/29 triage with the others.
 OLDEST_VENV := .venv-oldest
-OLDEST_LESSONS := lessons/00_start_here.ipynb lessons/07_homographies.ipynb lessons/11_stereo_rectification.ipynb
+OLDEST_LESSONS := lessons/00_start_here.ipynb lessons/07_homographies.ipynb lessons/09_image_stitching.ipynb lessons/11_stereo_rectification.ipynb
 $(OLDEST_VENV)/.installed: pyproject.toml setup.py requirements/oldest.txt | $(VENV)/.installed-test$(STAMP)
 	rm -rf $(OLDEST_VENV)
 	$(UV) venv --quiet --python $(BIN)/python $(OLDEST_VENV)
