@@ -730,6 +730,10 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
     """
     box = PARALLAX_BOX
     ax = view.fig.subplots()
+    # the layout ignores the hidden legend: reserve its room on the right at every setting
+    view.fig.set_layout_engine(None)
+    view.fig.subplots_adjust(left=0.02, right=0.8, top=0.87, bottom=0.03)
+    ax.set_anchor("W")
     im = view.animate(
         ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest")
     )  # one-pixel edges stay crisp
