@@ -113,6 +113,8 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
                 color=c,
                 lw=lw,
                 ls=(0, (5, 2)) if k == 3 else "-",
+                solid_joinstyle="round",  # no mitred spike past the canvas's frame at a sharp corner
+                dash_joinstyle="round",
                 path_effects=palette.halo(lw - 1.0, "black"),
                 label=f"{name} {k}",
             )[0]
@@ -148,11 +150,12 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
 
 
 def _set_frame(frame, extent) -> None:
-    """Draw the canvas's border 2 axes units outside the fitted image's extent (left, right, bottom, top).
+    """Draw the canvas's border 5 axes units outside the fitted image's extent (left, right, bottom, top).
 
-    Outside it, the grey line lies on the black round the canvas, never on the image.
+    Outside it, the grey line lies on the black round the canvas, never on the image, and
+    outside the thick outlines (with their halo) of photos that reach the canvas's edge.
     """
-    x0, x1, y1, y0 = np.add(extent, [-2, 2, 2, -2])
+    x0, x1, y1, y0 = np.add(extent, [-5, 5, 5, -5])
     frame.set_data([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0])
 
 
