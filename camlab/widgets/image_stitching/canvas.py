@@ -89,7 +89,7 @@ def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
     return np.asarray(points, float) * s + [ox, oy]
 
 
-CANVAS_PAD = 6.0
+CANVAS_PAD = 9.0
 """Axes units of black beyond the box of a panorama's axes: its border outlines stay whole."""
 
 
