@@ -89,7 +89,7 @@ def _fitted_points(points: np.ndarray, shape, box) -> np.ndarray:
     return np.asarray(points, float) * s + [ox, oy]
 
 
-CANVAS_PAD = 6.0
+CANVAS_PAD = 9.0
 """Axes units of black beyond the box of a panorama's axes: its border outlines stay whole."""
 
 
@@ -113,6 +113,8 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
                 color=c,
                 lw=lw,
                 ls=(0, (5, 2)) if k == 3 else "-",
+                solid_joinstyle="round",  # no mitred spike past the canvas's frame at a sharp corner
+                dash_joinstyle="round",
                 path_effects=palette.halo(lw - 1.0, "black"),
                 label=f"{name} {k}",
             )[0]
@@ -148,11 +150,12 @@ def _outline_figure(box, lw: float, name: str, animate_legend: bool):
 
 
 def _set_frame(frame, extent) -> None:
-    """Draw the canvas's border 2 axes units outside the fitted image's extent (left, right, bottom, top).
+    """Draw the canvas's border 5 axes units outside the fitted image's extent (left, right, bottom, top).
 
-    Outside it, the grey line lies on the black round the canvas, never on the image.
+    Outside it, the grey line lies on the black round the canvas, never on the image, and
+    outside the thick outlines (with their halo) of photos that reach the canvas's edge.
     """
-    x0, x1, y1, y0 = np.add(extent, [-2, 2, 2, -2])
+    x0, x1, y1, y0 = np.add(extent, [-5, 5, 5, -5])
     frame.set_data([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0])
 
 
@@ -730,6 +733,10 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
     """
     box = PARALLAX_BOX
     ax = view.fig.subplots()
+    # the layout ignores the hidden legend: reserve its room on the right at every setting
+    view.fig.set_layout_engine(None)
+    view.fig.subplots_adjust(left=0.02, right=0.8, top=0.87, bottom=0.03)
+    ax.set_anchor("W")
     im = view.animate(
         ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest")
     )  # one-pixel edges stay crisp

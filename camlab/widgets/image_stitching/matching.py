@@ -48,7 +48,7 @@ def feature_matches() -> Demo:
     :data:`MATCH_STRIDE` (4) are drawn, at every setting
     (:func:`camlab.plotting.stitching.thin_matches`), so the picture keeps about the true share
     of right matches and the number of lines drawn falls when matches fall. With the mutual
-    check on, every match it drops is drawn in grey dashes under the others.
+    check on, every match it drops is drawn in grey dashes over the others.
 
     Returns
     -------
@@ -72,10 +72,12 @@ def feature_matches() -> Demo:
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     # the images stay, only the lines (and the keypoints' visibility) change. Green over red here
-    # (at r near 1 the many red lines would bury the few green ones), and under both, in dark grey
-    # dashes without a halo (a seam's style stays the seams'), the matches the mutual check drops
+    # (at r near 1 the many red lines would bury the few green ones), and over both, in dark grey
+    # dashes on a light rim (the seams' are white on black), the matches the mutual check drops
+    # (a handful: none may hide under the green bundle)
     art["good"].set_zorder(2.2)
-    dropped = LineCollection([], colors="0.25", linewidths=2.2, linestyles=(0, (5, 2)), zorder=1.9)
+    dropped = LineCollection([], colors="0.25", linewidths=2.2, linestyles=(0, (5, 2)), zorder=2.5)
+    dropped.set_path_effects(palette.halo(2.2, "white"))
     ax.add_collection(dropped)
     view.animate(dropped, art["bad"], art["good"])
     kps = [
