@@ -33,8 +33,9 @@ def _look(centre, target) -> np.ndarray:
 def _cases():
     """(J_A, Sigma_A, J_B, Sigma_B, J_u, sigma_u): a real triangulation, as in section 3 (metres, px).
 
-    A 9 x 6 board of 25 mm squares (z = 0) seen by two cameras 0.45 m from its centre, their rays to a
-    box's corner 5 cm above the board 60 and 25 degrees apart; each pose's covariance from its 54
+    A 9 x 6 board of 25 mm squares (z = 0) seen by two cameras 0.45 m from its centre and 60 (then 25)
+    degrees apart as seen from that centre (their rays to the box's corner 5 cm above the board meet at
+    64.5 and 27.0 degrees); each pose's covariance from its 54
     corners at 0.14 px, and the triangulated corner's Jacobians by central differences of the DLT.
     """
     from ..camera import rotation_from_axis_angle
