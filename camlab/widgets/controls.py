@@ -280,7 +280,6 @@ def corner_keys(
     u_max: float,
     v_max: float,
     clamp: Callable[[np.ndarray, int, np.ndarray], np.ndarray] | None = None,
-    browser_writes: bool = False,
 ) -> dict[str, W.ValueWidget]:
     """Keyboard twins of dragging a corner: a dropdown picks the corner, two sliders move it.
 
@@ -303,11 +302,6 @@ def corner_keys(
         ``clamp(corners, index, wanted) -> (u, v)``: where a slider may put corner ``index``
         when it asks for ``wanted`` (e.g. :func:`convex_clamp`); the sliders then snap to it.
         None (default) puts it where asked.
-    browser_writes : bool, optional
-        True when the browser writes a slider's corner into the text itself (a demo drawn in the
-        browser, :class:`~camlab.widgets.browser.BrowserView`): a slider move that comes from the
-        browser is then not written again here, since the kernel's copy, sent back while the
-        browser is already a key press further, would undo that press.
 
     Returns
     -------
@@ -338,8 +332,6 @@ def corner_keys(
     def write_corner(_change: Any) -> None:
         if syncing[0] or not (np.isfinite(u.value) and np.isfinite(v.value)):
             return  # NaN from a slider: the demo reports it (widgets._base.build_demo)
-        if browser_writes and "value" in _change["owner"]._property_lock:
-            return  # set by the browser, which wrote the text too (ipywidgets locks what it syncs in)
         try:
             pts = parse_corners(control.value)
         except ValueError:

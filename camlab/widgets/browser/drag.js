@@ -1,4 +1,4 @@
-import { cornerSlid, dragTableText, dragView, formatCorners, parseCorners, wrapText } from "./corners.js";
+import { dragTableText, dragView, formatCorners, parseCorners, wrapText } from "./corners.js";
 import { inv3, mapPoints } from "./geometry.js";
 import { drawWarp } from "./hierarchy.js";
 import { inPanel } from "./projective_plane.js";
@@ -7,9 +7,9 @@ import { boxedText, dot, label, polyline, textLines } from "./drawing.js";
 // Lesson 07's drag_homography drawn in the browser: twin of
 // camlab.widgets.homographies.geometry.drag_homography's update (the arithmetic in
 // camlab.widgets.homographies.corner_twins.drag_view, its twin dragView in corners.js). The corners
-// are a text control: a corner slider writes it here (cornerSlid, the twin of corner_keys' clamp)
-// and the mouse drags a corner (dragCorners); the text reaches the kernel through its link, and the
-// kernel's readout follows. The picture is warped as transformation_hierarchy warps it (drawWarp).
+// are a text control: the mouse drags a corner here (dragCorners) and the text reaches the kernel
+// through its link; a corner slider writes it in the kernel (corner_keys: a second writer in the
+// browser raced the kernel's copy and lost key presses), and the kernel's readout follows. The picture is warped as transformation_hierarchy warps it (drawWarp).
 
 const LAST = new WeakMap(); // per scene: the last view that could be drawn (a wrong text keeps it)
 const GRABBED = new WeakMap(); // per scene: the corner a press picked (null: none)
@@ -53,13 +53,6 @@ export function drawDrag(ctx, scene, v) {
     if (shown) label(ctx, scene.names[i], [at[i][0] + dx * pt, at[i][1] - dy * pt], st.names, "center", "center");
   });
   return g;
-}
-
-// A corner slider moved (its link set the canvas's corner_u or corner_v): write the corners text.
-export function followDrag(scene, name, v) {
-  if (name !== "corner_u" && name !== "corner_v") return null;
-  const text = cornerSlid(v.corners, v.corner, name, v[name], scene.margin);
-  return text === null ? null : { corners: text };
 }
 
 // A press within scene.radius px of a corner picks it; a move with the button held drags it to the

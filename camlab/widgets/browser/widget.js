@@ -7,14 +7,13 @@ import { drawDollyZoom } from "./dolly_zoom.js";
 import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
 import { drawHierarchy } from "./hierarchy.js";
 import { drawForwardInverse } from "./forward_inverse.js";
-import { dragCorners, drawDrag, followDrag } from "./drag.js";
+import { dragCorners, drawDrag } from "./drag.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
 // `drag(scene, [u, v], values, type)`, where a demo takes the mouse, turns a press ("pointerdown") or
 // drag at figure pixel (u, v) into the parameters to set (or null): set on the canvas, they reach the
-// sliders by their links. `follow(scene, name, values)`, where one control writes another (a corner
-// slider writes drag_homography's corners text), gives the parameters to set when `name` changed.
+// sliders by their links.
 const SCENES = {
   stack_check: { draw: drawStackCheck },
   similar_triangles: { draw: drawSimilarTriangles, drag: dragSimilarTriangles },
@@ -28,7 +27,7 @@ const SCENES = {
   epipolar_lines: { draw: drawEpipolarLines, drag: dragEpipolarLines },
   transformation_hierarchy: { draw: drawHierarchy },
   forward_vs_inverse: { draw: drawForwardInverse },
-  drag_homography: { draw: drawDrag, drag: dragCorners, follow: followDrag },
+  drag_homography: { draw: drawDrag, drag: dragCorners },
 };
 
 // The parameters' values by name, a choice's as its chosen option.
@@ -101,11 +100,7 @@ function render({ model, el }) {
     };
     background.src = scene.background;
     for (const name of scene.params.filter((n) => !listening.has(n))) {
-      model.on(`change:${name}`, () => {
-        const now = model.get("scene");
-        const follow = SCENES[now.kind].follow;
-        if (!(follow && setValues(model, follow(now, name, valuesOf(model, now))))) draw(); // else drawn on its change
-      });
+      model.on(`change:${name}`, draw);
       listening.add(name);
     }
   };

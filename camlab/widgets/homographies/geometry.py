@@ -648,15 +648,10 @@ def _drag_line_names(ax_s, line_pts) -> None:
         )  # black on a white halo: readable on any colour
 
 
-def _drag_keys(control, out_hw, browser: bool) -> dict:
+def _drag_keys(control, out_hw) -> dict:
     """The corner sliders, stopped short of a dent or bow tie (typed or dragged corners go anywhere)."""
     return corner_keys(
-        control,
-        CORNER_NAMES,
-        out_hw[1] - 1,
-        out_hw[0] - 1,
-        clamp=convex_clamp(SLIDER_MARGIN_PX),
-        browser_writes=browser,
+        control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1, clamp=convex_clamp(SLIDER_MARGIN_PX)
     )
 
 
@@ -718,7 +713,7 @@ def drag_homography() -> Demo:
     art = _drag_artists(view, ax_s, ax_t, out_hw)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
-    keys = _drag_keys(control, out_hw, view.browser)
+    keys = _drag_keys(control, out_hw)
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:
@@ -763,7 +758,7 @@ def drag_homography() -> Demo:
         )
     )
     longest = "cannot use these corners:\n" + "\n".join(["x"] * 3)  # as many lines as TORN_DRAG
-    notes = dict(torn=TORN_DRAG, longest=longest, margin=SLIDER_MARGIN_PX, radius=DRAG_RADIUS_PX)
+    notes = dict(torn=TORN_DRAG, longest=longest, radius=DRAG_RADIUS_PX)
     view.publish(
         demo, drag_scene((ax_s, ax_t), art, pic, fixed, notes)
     )  # the browser draws the moves
