@@ -431,15 +431,7 @@ def draw_verdicts(
         color=[v[1] for v in verdicts],
     )
     for t in thresholds:
-        ax_h.axvline(t, color="0.2", ls=":", lw=1)
-        ax_h.annotate(
-            f"{t} px",
-            (t, 1),
-            xycoords=("data", "axes fraction"),
-            xytext=(3, -12),
-            textcoords="offset points",
-            fontsize=8,
-        )
+        _mark_threshold(ax_h, t)
     ax_h.set(xscale="log", xlabel="error $e_i$ under the 3 px H (pixels)", ylabel="pairs")
     ax_h.set_title("each pair's error", fontsize=10)
     return fig
@@ -542,6 +534,19 @@ def draw_overlay(
     return fig
 
 
+def _mark_threshold(ax, t: float) -> None:
+    """A dotted vertical line at the threshold ``t`` with its "t px" label just below the axes' top."""
+    ax.axvline(t, color="0.2", ls=":", lw=1)
+    ax.annotate(
+        f"{t:g} px",
+        (t, 1),
+        xycoords=("data", "axes fraction"),
+        xytext=(3, -12),
+        textcoords="offset points",
+        fontsize=8,
+    )
+
+
 def draw_error_histograms(errors, threshold: float = 3.0, title=""):
     """Normalised histograms of e_i for several photo pairs on one log axis.
 
@@ -569,15 +574,7 @@ def draw_error_histograms(errors, threshold: float = 3.0, title=""):
             e, bins=bins, weights=np.full(len(e), 1 / len(e)), label=f"{label} ({len(e)})", **style
         )
     ax.set_ylim(0, 1.3 * ax.get_ylim()[1])  # room above the bars for the key and the label
-    ax.axvline(threshold, color="0.2", ls=":", lw=1)
-    ax.annotate(
-        f"{threshold:g} px",
-        (threshold, 1),
-        xycoords=("data", "axes fraction"),
-        xytext=(3, -12),
-        textcoords="offset points",
-        fontsize=8,
-    )
+    _mark_threshold(ax, threshold)
     ax.set(
         xscale="log", xlabel="error $e_i$ under the 3 px H (pixels)", ylabel="fraction of the pairs"
     )
