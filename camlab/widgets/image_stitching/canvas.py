@@ -733,10 +733,11 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
     """
     box = PARALLAX_BOX
     ax = view.fig.subplots()
-    # the layout ignores the hidden legend: reserve its room on the right at every setting
+    # the layout ignores the hidden legend: a strip under the picture keeps its room at every
+    # setting, and the figure is as wide as the picture (no blank column beside it)
     view.fig.set_layout_engine(None)
-    view.fig.subplots_adjust(left=0.02, right=0.8, top=0.87, bottom=0.03)
-    ax.set_anchor("W")
+    view.fig.subplots_adjust(left=0.01, right=0.99, top=0.9, bottom=0.11)
+    ax.set_anchor("N")
     im = view.animate(
         ax.imshow(np.zeros((10, 10, 3)), interpolation="nearest")
     )  # one-pixel edges stay crisp
@@ -753,14 +754,16 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
             ((255, 255, 255), "edge in both"),
         )
     ]
-    # beside the picture, not over it; shown only while the edges are painted
+    # under the picture, not over it; shown only while the edges are painted
     legend = view.animate(
         ax.legend(
             handles=key,
-            loc="upper left",
-            bbox_to_anchor=(1.01, 1.0),
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.01),
+            ncols=3,
             fontsize=8,
             title="edges",
+            title_fontsize=8,
             facecolor="0.55",
         )
     )
@@ -851,7 +854,7 @@ def parallax_ghosting() -> Demo:
         grey levels 0-255, ``method``, ``image`` the blend).
     """
     pairs = pe.parallax_pairs()
-    view = FigureView(figsize=(9, 4.4))
+    view = FigureView(figsize=(6.4, 4.8))  # the picture fills the width: see _parallax_figure
     art = _parallax_figure(view)
     readout = W.HTML()
 
