@@ -145,10 +145,11 @@ def _figure() -> SimpleNamespace:
 
 
 def _readout(p: SimpleNamespace, name: str, n: int) -> str:
+    chance = f"≈ {p.rule:.1%}" if p.rule >= 0.0005 else "< 0.05%"  # not "0.0%": it is never zero
     return monospace(
         f"{name}: {2 * n} coordinates, noise {SIGMA_PX} px each\n"
         f"gap = half the two reprojections' distance = {p.gap:.1f} σ\n"
-        f"the flipped pose fits better with chance ≈ {p.rule:.1%} by the rule Φ(−gap)\n"
+        f"the flipped pose fits better with chance {chance} by the rule Φ(−gap)\n"
         "  (the rule's estimate; optimistic near head-on, section 2b)\n"
         f"the two poses differ by a {p.dR:.0f}° rotation and put the camera {p.dC:.0f} mm apart,\n"
         f"while the target's corners in the image move by at most {p.largest:.2f} px"
