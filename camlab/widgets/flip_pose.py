@@ -145,7 +145,8 @@ def _figure() -> SimpleNamespace:
 
 
 def _readout(p: SimpleNamespace, name: str, n: int) -> str:
-    chance = f"≈ {p.rule:.1%}" if p.rule >= 0.0005 else "< 0.05%"  # not "0.0%": it is never zero
+    # never "0.0%" (the chance is never zero), and no "<": the readout is HTML
+    chance = f"≈ {p.rule:.1%}" if p.rule >= 0.0005 else "below 0.05%"
     return monospace(
         f"{name}: {2 * n} coordinates, noise {SIGMA_PX} px each\n"
         f"gap = half the two reprojections' distance = {p.gap:.1f} σ\n"
