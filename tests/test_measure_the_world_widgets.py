@@ -64,9 +64,12 @@ def test_flip_pose_gives_section_2b_gaps():
 
     demo = flip_pose()  # the 5 cm tag at 1.5 m and 20 deg: 0.7 sigma, the cameras 1026 mm apart
     assert abs(demo.state["gap"] - 0.72) < 0.01 and abs(demo.state["dC_mm"] - 1026) < 1
-    assert demo.state["largest_px"] < SIGMA_PX
+    assert demo.state["largest_px"] < SIGMA_PX and abs(demo.state["dR_deg"] - 40) < 0.5
+    assert "differ by a 40° rotation and put the camera 1026 mm apart" in demo.state["readout"]
+    assert f"move by at most {demo.state['largest_px']:.2f} px" in demo.state["readout"]
     demo.set(target="board (54 corners)")  # the board there: 13.3 sigma, never flips
     assert abs(demo.state["gap"] - 13.28) < 0.01 and demo.state["rule"] < 1e-30
+    assert "chance below 0.05% by the rule" in demo.state["readout"]  # never "0.0%"
     demo.set(tilt=2.0)  # near head-on: the rule's 8.5 %, the camera 105 mm off
     assert abs(demo.state["rule"] - 0.085) < 0.001 and abs(demo.state["dC_mm"] - 105) < 1
     curve = demo.figure.axes[1].lines[1].get_ydata()

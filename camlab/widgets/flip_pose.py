@@ -145,13 +145,15 @@ def _figure() -> SimpleNamespace:
 
 
 def _readout(p: SimpleNamespace, name: str, n: int) -> str:
+    # never "0.0%" (the chance is never zero), and no "<": the readout is HTML
+    chance = f"≈ {p.rule:.1%}" if p.rule >= 0.0005 else "below 0.05%"
     return monospace(
         f"{name}: {2 * n} coordinates, noise {SIGMA_PX} px each\n"
         f"gap = half the two reprojections' distance = {p.gap:.1f} σ\n"
-        f"the flipped pose fits better with chance ≈ {p.rule:.1%} by the rule Φ(−gap)\n"
+        f"the flipped pose fits better with chance {chance} by the rule Φ(−gap)\n"
         "  (the rule's estimate; optimistic near head-on, section 2b)\n"
-        f"its corners differ from the true pose's by at most {p.largest:.2f} px\n"
-        f"yet it turns the target by {p.dR:.0f}° and moves the camera {p.dC:.0f} mm"
+        f"the two poses differ by a {p.dR:.0f}° rotation and put the camera {p.dC:.0f} mm apart,\n"
+        f"while the target's corners in the image move by at most {p.largest:.2f} px"
     )
 
 
@@ -171,7 +173,8 @@ def flip_pose() -> Demo:
     -------
     Demo
         Controls ``tilt`` (degrees), ``distance`` (metres) and ``target``; ``state`` holds
-        ``gap`` (sigma), ``rule`` (:math:`\Phi(-\text{gap})`), ``dC_mm`` and ``largest_px``.
+        ``gap`` (sigma), ``rule`` (:math:`\Phi(-\text{gap})`), ``dR_deg``, ``dC_mm``,
+        ``largest_px`` and the ``readout`` text.
     """
     fig = _figure()
     readout = W.HTML()
@@ -188,8 +191,15 @@ def flip_pose() -> Demo:
         fig.here.set_data([v["tilt"]], [np.clip(p.gap, *GAP_LIM)])
         fig.ax.title.set_text(f"to scale: the two cameras {p.dC:.0f} mm apart")
         fig.ax_gap.title.set_text(f"{v['target']} at {v['distance']:.1f} m: gap {p.gap:.1f} σ here")
-        state.update(gap=p.gap, rule=p.rule, dC_mm=p.dC, largest_px=p.largest)
         readout.value = _readout(p, v["target"], len(pts))
+        state.update(
+            gap=p.gap,
+            rule=p.rule,
+            dR_deg=p.dR,
+            dC_mm=p.dC,
+            largest_px=p.largest,
+            readout=readout.value,
+        )
 
     controls = {
         "tilt": slider(20.0, 1.0, 40.0, 1.0, "tilt (deg)"),

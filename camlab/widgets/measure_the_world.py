@@ -488,9 +488,11 @@ def _ray_figure() -> SimpleNamespace:
     )
     ax.fill([], [], color=palette.ORANGE, alpha=0.18, lw=0, label="± e about each ray (one σ)")
     ax.plot([], [], "-", color=palette.BLUE, lw=2, label="95 % ellipse of the point")
-    (f.law_depth,) = ax_law.plot([], [], "-", color="0.1", lw=1.5, label="σ depth = c / sin(α/2)")
+    (f.law_depth,) = ax_law.plot(
+        [], [], "-", color=palette.BLUE, lw=1.5, label="σ depth = c / sin(α/2)"
+    )
     (f.law_across,) = ax_law.plot(
-        [], [], "--", color="0.1", lw=1.5, label="σ across = c / cos(α/2)"
+        [], [], "--", color=palette.BLUE, lw=1.5, label="σ across = c / cos(α/2)"
     )
     (f.here,) = ax_law.plot([], [], "o", mfc="none", mec="0.1", mew=1.5, ms=7, label="this α")
     handles = sum((a.get_legend_handles_labels()[0] for a in (ax_scene, ax, ax_law)), [])
