@@ -26,6 +26,7 @@ import browser  # noqa: E402
 # The demos drawn in the browser, and a word their alt text must carry.
 BROWSER_DEMOS = {
     "stack_check": "house",
+    "pinhole_projection": "image planes",
     "similar_triangles": "camera obscura",
     "three_cameras": "orthographic",
     "dolly_zoom": "zooming",
