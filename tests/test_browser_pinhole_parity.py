@@ -89,9 +89,7 @@ def test_the_3d_view_equals_optics_pinhole_view():
         f_draw = rng.uniform(0.05, 1.2)
         half = rng.uniform(0.05, 0.6) if k % 2 else 0.02  # some pictures cut by the frame
         cases.append((faces, edges, f_draw, half))
-    calls = [
-        ("pinholeView", [f.corners.tolist(), f.greys.tolist(), d, h]) for f, _e, d, h in cases
-    ]
+    calls = [("pinholeView", [f.corners.tolist(), f.greys.tolist(), d, h]) for f, _e, d, h in cases]
     for js, (faces, edges, f_draw, half) in zip(run_js(calls, PINHOLE), cases, strict=True):
         py = optics.pinhole_view(edges, f_draw, faces, half)
         assert_twins(js["edges"], py["edges"], "edges")
@@ -146,7 +144,11 @@ def test_the_3d_projection_is_mplot3d_s(demo):
     scene = _scene(demo)
     rng = np.random.default_rng(4)
     X = np.column_stack(
-        [rng.uniform(-0.3, 0.3, CASES), rng.uniform(-0.3, 0.3, CASES), rng.uniform(-1.3, 4.5, CASES)]
+        [
+            rng.uniform(-0.3, 0.3, CASES),
+            rng.uniform(-0.3, 0.3, CASES),
+            rng.uniform(-1.3, 4.5, CASES),
+        ]
     )
     js = run_js([("project3d", [scene["M"], scene["toPixels"], x.tolist()]) for x in X], PINHOLE)
     ax3 = demo.figure.axes[0]
@@ -171,7 +173,9 @@ def test_the_renderer_s_geometry_equals_camlab_render_s():
             )
         )
     data = [
-        dict(R=p.R.tolist(), t=p.t.tolist(), extent=list(map(float, p.extent)), twoSided=p.two_sided)
+        dict(
+            R=p.R.tolist(), t=p.t.tolist(), extent=list(map(float, p.extent)), twoSided=p.two_sided
+        )
         for p in planes
     ]
     calls = [("visiblePlanes", [data, Kc.tolist()])]

@@ -188,7 +188,9 @@ def pinhole_projection():
         ``depth_squeeze``, ``bar_clipped``).
     """
     controls = _projection_controls()
-    view = BrowserView(("focal_mm", "distance", "real_plane"), figsize=(8.8, 4.8), flags=("real_plane",))
+    view = BrowserView(
+        ("focal_mm", "distance", "real_plane"), figsize=(8.8, 4.8), flags=("real_plane",)
+    )
     parts = _projection_figure(view)
     art, ax_img, im, squeeze = parts.art, parts.ax_img, parts.im, parts.squeeze
     width_bar, bar_ends, scale_note = parts.width_bar, parts.bar_ends, parts.scale_note

@@ -364,7 +364,8 @@ def pinhole_view(
         centres = polygons.mean(axis=1)
         normals = np.cross(polygons[:, 1] - polygons[:, 0], polygons[:, 2] - polygons[:, 1])
         seen = np.einsum("ij,ij->i", normals, -centres) > 0  # the face turns towards the pinhole
-        order = np.argsort(-centres[:, 2], kind="stable")  # far faces first: nearer ones paint over them
+        # far faces first: nearer ones paint over them
+        order = np.argsort(-centres[:, 2], kind="stable")
         seen_faces = [k for k in order if seen[k]]
         out["fills"] = {"box": [(polygons[k], float(shades[k])) for k in seen_faces]}
         # the view looks from the pinhole's side: draw the seen faces' edges (not the hidden ones through the
@@ -380,7 +381,13 @@ def pinhole_view(
     for name, sign in (("real", -1), ("virtual", 1)):
         z = sign * f_draw
         out["frames"][name] = np.array(
-            [[-h, -h * 0.75, z], [h, -h * 0.75, z], [h, h * 0.75, z], [-h, h * 0.75, z], [-h, -h * 0.75, z]]
+            [
+                [-h, -h * 0.75, z],
+                [h, -h * 0.75, z],
+                [h, h * 0.75, z],
+                [-h, h * 0.75, z],
+                [-h, -h * 0.75, z],
+            ]
         )
         img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
         out["images"][name] = np.concatenate([img, np.full(img.shape[:2] + (1,), z)], axis=2)
