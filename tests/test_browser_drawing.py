@@ -412,3 +412,22 @@ def test_typed_corners_of_a_bow_tie_tear_the_drag_homography_canvas_as_matplotli
     assert 0 < changed.mean() < 0.05, (
         f"{changed.mean():.1%} of the canvas changed: only the note should"
     )
+
+
+def test_the_real_plane_checkbox_turns_the_pinhole_projection_image_in_the_browser(lab_page):
+    """pinhole_projection's checkbox (a boolean trait linked in the browser) redraws the canvas: the
+    image turned by 180 degrees and the bar mirrored, as matplotlib draws them."""
+    page = lab_page
+    name = "pinhole_projection"
+    canvas = _shown(page, name)
+    before = canvas.screenshot()
+    page.locator(f".{css(name)} input[type=checkbox]").check()
+    page.wait_for_timeout(500)
+    assert canvas.screenshot() != before, "the checkbox did not change the canvas"
+    values = dict(slider_values(page, name), real_plane=True)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_real", live)
+    share = drawn_as_matplotlib_draws_it(name, live, values)
+    print(json.dumps({"demo": name, "values": values, "share": round(share, 4)}))
+    assert share >= 0.95, f"with the real plane the canvas matches matplotlib's on {share:.0%}"
