@@ -26,6 +26,7 @@ import browser  # noqa: E402
 # The demos drawn in the browser, and a word their alt text must carry.
 BROWSER_DEMOS = {
     "stack_check": "house",
+    "pinhole_projection": "image planes",
     "similar_triangles": "camera obscura",
     "three_cameras": "orthographic",
     "dolly_zoom": "zooming",
@@ -334,24 +335,26 @@ def test_the_transformation_hierarchy_canvas_follows_the_group_and_its_tear(lab_
     assert share >= 0.95, f"torn, the canvas matches matplotlib's on {share:.0%}"
 
 
-def test_stack_check_is_drawn_in_the_browser_in_the_lecture_mode(playwright, tmp_path):
-    """``camlab present 00`` (Voila): the anywidget canvas shows and follows a keydown there too."""
-    with browser.lecture_mode("00", tmp_path) as port:
+@pytest.mark.parametrize(("lesson", "name"), [("00", "stack_check"), ("01", "pinhole_projection")])
+def test_a_demo_is_drawn_in_the_browser_in_the_lecture_mode(playwright, tmp_path, lesson, name):
+    """``camlab present NN`` (Voila): the anywidget canvas shows and follows a keydown there too
+    (lesson 01's pinhole_projection: its scene carries the box's textures, about 1 MB)."""
+    with browser.lecture_mode(lesson, tmp_path) as port:
         context = browser.launch(playwright, tmp_path / "chromium")
         try:
             page = context.new_page()
             page.set_default_timeout(120_000)
             page.goto(f"http://127.0.0.1:{port}/", wait_until="commit")
-            canvas = page.locator(f".{css('stack_check')} {CANVAS}")
+            canvas = page.locator(f".{css(name)} {CANVAS}")
             canvas.wait_for(state="visible")
             canvas.scroll_into_view_if_needed()
             page.wait_for_timeout(1000)
-            samples = browser.key_to_pixels(page, css("stack_check"), CANVAS, presses=10)
+            samples = browser.key_to_pixels(page, css(name), CANVAS, presses=10)
         finally:
             context.close()
     assert all(s >= 0 for s in samples), f"a keydown left the canvas unchanged in Voila: {samples}"
     median = statistics.median(samples)
-    print(json.dumps({"demo": "stack_check", "path": "browser, lecture mode", "median_ms": median}))
+    print(json.dumps({"demo": name, "path": "browser, lecture mode", "median_ms": median}))
     assert median <= 50, f"keydown to changed pixels took {median:.1f} ms in the lecture mode"
 
 
@@ -409,3 +412,22 @@ def test_typed_corners_of_a_bow_tie_tear_the_drag_homography_canvas_as_matplotli
     assert 0 < changed.mean() < 0.05, (
         f"{changed.mean():.1%} of the canvas changed: only the note should"
     )
+
+
+def test_the_real_plane_checkbox_turns_the_pinhole_projection_image_in_the_browser(lab_page):
+    """pinhole_projection's checkbox (a boolean trait linked in the browser) redraws the canvas: the
+    image turned by 180 degrees and the bar mirrored, as matplotlib draws them."""
+    page = lab_page
+    name = "pinhole_projection"
+    canvas = _shown(page, name)
+    before = canvas.screenshot()
+    page.locator(f".{css(name)} input[type=checkbox]").check()
+    page.wait_for_timeout(500)
+    assert canvas.screenshot() != before, "the checkbox did not change the canvas"
+    values = dict(slider_values(page, name), real_plane=True)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_real", live)
+    share = drawn_as_matplotlib_draws_it(name, live, values)
+    print(json.dumps({"demo": name, "values": values, "share": round(share, 4)}))
+    assert share >= 0.95, f"with the real plane the canvas matches matplotlib's on {share:.0%}"

@@ -168,3 +168,32 @@ def test_dolly_zoom_sends_its_panels_and_draws_as_headless(in_a_kernel, monkeypa
     headless.set(distance=30.0, offset=40)
     assert np.array_equal(live, headless.view.pixels())
     assert demo.state["rms_error"] == headless.state["rms_error"]
+
+
+def test_pinhole_projection_links_its_checkbox_as_a_flag_and_sends_its_textured_planes(
+    in_a_kernel, monkeypatch
+):
+    """The real-plane checkbox reaches the canvas as a boolean; the scene holds the box's six faces
+    (float32 textures) and the wall as its 16 x 12 squares; pixels equal the headless drawing."""
+    import traitlets
+
+    from camlab.fixtures.lessons import WALL_TEXELS
+    from camlab.widgets.pinhole_camera import pinhole_projection
+
+    demo = pinhole_projection()
+    canvas = demo.view.canvas
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links["real_plane"] == (demo.controls["real_plane"], "value")
+    assert isinstance(canvas.traits()["real_plane"], traitlets.Bool) and canvas.real_plane is False
+    planes = canvas.scene["planes"]
+    assert [p["box"] for p in planes] == [True] * 6 + [False]
+    wall = planes[-1]["texture"]
+    assert (wall["width"], wall["height"], wall["texels"]) == (16, 12, WALL_TEXELS)
+    face = planes[0]["texture"]
+    assert len(base64.b64decode(face["data"])) == 4 * face["width"] * face["height"]
+    demo.set(focal_mm=83.0, distance=1.1, real_plane=True)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = pinhole_projection()
+    headless.set(focal_mm=83.0, distance=1.1, real_plane=True)
+    assert np.array_equal(live, headless.view.pixels())

@@ -12,6 +12,7 @@ from ..plotting import images, optics, palette
 from ..scenes.planes import CHART_ROW_HEIGHTS
 from ._base import FigureView, build_demo, register, slider
 from .browser import BrowserView
+from .browser.pinhole_scenes import pinhole_projection_scene
 from .browser.scenes import similar_triangles_scene
 from .controls import monospace
 
@@ -159,6 +160,7 @@ def _projection_figure(view: FigureView) -> SimpleNamespace:
     )
     return SimpleNamespace(
         art=art,
+        ax3=ax3,
         ax_img=ax_img,
         im=im,
         planes=planes,
@@ -186,7 +188,9 @@ def pinhole_projection():
         ``depth_squeeze``, ``bar_clipped``).
     """
     controls = _projection_controls()
-    view = FigureView(figsize=(8.8, 4.8))
+    view = BrowserView(
+        ("focal_mm", "distance", "real_plane"), figsize=(8.8, 4.8), flags=("real_plane",)
+    )
     parts = _projection_figure(view)
     art, ax_img, im, squeeze = parts.art, parts.ax_img, parts.im, parts.squeeze
     width_bar, bar_ends, scale_note = parts.width_bar, parts.bar_ends, parts.scale_note
@@ -252,7 +256,7 @@ def pinhole_projection():
             f"wall of 1 m squares at {fixtures.WALL_DISTANCE:g} m (beyond the 3-D view)"
         )
 
-    return build_demo(
+    demo = build_demo(
         "pinhole_projection",
         controls,
         view,
@@ -260,6 +264,28 @@ def pinhole_projection():
         title="Pinhole projection x = f X / Z",
         extra=[readout],
     )
+    # the browser draws the moves: the 3-D view from optics.pinhole_view's twin, the image rendered
+    # from the same textured planes as camlab.render.render renders it
+    faces, wall = fixtures.box_before_wall(1.0)  # the browser moves the box from 1 m to Z
+    view.publish(
+        demo,
+        pinhole_projection_scene(
+            parts,
+            dict(
+                faces=faces,
+                boxDistance=1.0,
+                wall=wall,
+                size=SIZE,
+                pitch=PITCH,
+                sensor=SENSOR,
+                planeScale=PLANE_SCALE,
+                planeRoom=PLANE_ROOM,
+                planeMax=PLANE_MAX,
+                barRow=0.92 * SIZE[1],
+            ),
+        ),
+    )
+    return demo
 
 
 def _signed(x: float, digits: int) -> str:

@@ -25,6 +25,7 @@ from .pinhole_camera import (
     box_edges,
     draw_pinhole_3d,
     label_camera_axes,
+    pinhole_view,
     plane_faces,
     update_pinhole_3d,
 )
@@ -74,6 +75,7 @@ __all__ = [
     "PINHOLE_VIEW",
     "PlaneFaces",
     "plane_faces",
+    "pinhole_view",
     "draw_pinhole_3d",
     "update_pinhole_3d",
     "draw_similar_triangles",

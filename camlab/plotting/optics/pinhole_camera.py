@@ -22,6 +22,7 @@ __all__ = [
     "PINHOLE_VIEW",
     "PlaneFaces",
     "plane_faces",
+    "pinhole_view",
     "draw_pinhole_3d",
     "update_pinhole_3d",
 ]
@@ -323,6 +324,87 @@ def _clip_to_frame(polygon: np.ndarray, half_width: float, half_height: float) -
     return np.array(points, float).reshape(-1, 2)
 
 
+def pinhole_view(
+    edges: np.ndarray,
+    f_draw: float,
+    faces: tuple[np.ndarray, np.ndarray] | None = None,
+    plane_half: float | None = None,
+) -> dict:
+    """What :func:`update_pinhole_3d` draws, camera frame (metres): the numpy twin of ``pinholeView``.
+
+    ``pinholeView`` in ``camlab/widgets/browser/pinhole.js`` computes the same for the browser
+    (with ``faces`` given); ``tests/test_browser_pinhole_parity.py`` runs both.
+
+    Parameters
+    ----------
+    edges : (K, 2, 3) ndarray
+        The box's edges, camera frame, metres.
+    f_draw : float
+        Pinhole-to-image-plane distance as drawn, metres (both planes).
+    faces : (polygons, shades) or None
+        Faces to fill (:func:`plane_faces`); None draws the wire frame only.
+    plane_half : float or None
+        The planes' half-width, metres; None fits the image (1.25 times its widest point).
+
+    Returns
+    -------
+    dict
+        ``plane_half`` (m); ``edges`` (K', 2, 3): the edges drawn (with faces, those of the faces
+        the pinhole sees, each once); ``rays`` (N, 2, 3): from each corner through the pinhole to
+        the real plane; ``frames`` and ``images`` by plane ("real", "virtual"): the (5, 3) frame and
+        the edges' pictures (K', 2, 3) at z = -f_draw and +f_draw; with faces, ``fills``: by "box",
+        "real" and "virtual" a list of (polygon (M, 3), grey), the box's seen faces far to near
+        and their pictures cut at each frame (Sutherland-Hodgman), as the sensor cuts the image.
+    """
+    corners = np.unique(edges.reshape(-1, 3), axis=0)
+    h = plane_half or 1.25 * float(np.abs(_pinhole.project_pinhole(corners, f_draw)).max())
+    out: dict = {"plane_half": h, "frames": {}, "images": {}}
+    if faces is not None:
+        polygons, shades = (np.asarray(a, float) for a in faces)
+        centres = polygons.mean(axis=1)
+        normals = np.cross(polygons[:, 1] - polygons[:, 0], polygons[:, 2] - polygons[:, 1])
+        seen = np.einsum("ij,ij->i", normals, -centres) > 0  # the face turns towards the pinhole
+        # far faces first: nearer ones paint over them
+        order = np.argsort(-centres[:, 2], kind="stable")
+        seen_faces = [k for k in order if seen[k]]
+        out["fills"] = {"box": [(polygons[k], float(shades[k])) for k in seen_faces]}
+        # the view looks from the pinhole's side: draw the seen faces' edges (not the hidden ones through the
+        # fills) and the rays from their corners
+        edges = np.concatenate(
+            [np.stack([polygons[k], np.roll(polygons[k], -1, axis=0)], axis=1) for k in seen_faces]
+        )
+        corners = np.unique(np.round(polygons[seen_faces].reshape(-1, 3), 12), axis=0)
+        edges = _unique_segments(
+            edges
+        )  # an edge two seen faces share, drawn once: halos drawn twice split it
+    out["edges"] = edges
+    for name, sign in (("real", -1), ("virtual", 1)):
+        z = sign * f_draw
+        out["frames"][name] = np.array(
+            [
+                [-h, -h * 0.75, z],
+                [h, -h * 0.75, z],
+                [h, h * 0.75, z],
+                [-h, h * 0.75, z],
+                [-h, -h * 0.75, z],
+            ]
+        )
+        img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
+        out["images"][name] = np.concatenate([img, np.full(img.shape[:2] + (1,), z)], axis=2)
+        if faces is not None:
+            # each face's picture, cut at the frame as the sensor cuts the image: what falls outside is not recorded
+            cut = [
+                (_clip_to_frame(_pinhole.project_pinhole(p, f_draw, plane=name), h, 0.75 * h), grey)
+                for p, grey in out["fills"]["box"]
+            ]
+            out["fills"][name] = [
+                (np.column_stack([p, np.full(len(p), z)]), grey) for p, grey in cut if len(p) >= 3
+            ]
+    ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
+    out["rays"] = np.stack([corners, ends], axis=1)
+    return out
+
+
 def update_pinhole_3d(
     art: dict,
     edges: np.ndarray,
@@ -332,8 +414,7 @@ def update_pinhole_3d(
 ) -> None:
     """Move the box to ``edges`` (and its ``faces``) and the image planes to ``f_draw``.
 
-    See :func:`draw_pinhole_3d` for ``faces``. Each face's picture is cut at the plane's frame
-    (Sutherland-Hodgman), as the sensor cuts the image.
+    See :func:`draw_pinhole_3d` for ``faces`` and :func:`pinhole_view` for what is drawn.
 
     Parameters
     ----------
@@ -349,67 +430,17 @@ def update_pinhole_3d(
         The planes' half-width this time, metres (e.g. the sensor's, scaled like ``f_draw``);
         None keeps the one given to :func:`draw_pinhole_3d`, or fits the image.
     """
-    corners = np.unique(edges.reshape(-1, 3), axis=0)
-    h = (
-        plane_half
-        or art["plane_half"]
-        or 1.25 * float(np.abs(_pinhole.project_pinhole(corners, f_draw)).max())
+    view = pinhole_view(
+        edges, f_draw, faces if art["fills"] else None, plane_half or art["plane_half"]
     )
-    art["plane_half_drawn"] = h
-    if faces is not None and art["fills"]:
-        polygons, shades = (np.asarray(a, float) for a in faces)
-        centres = polygons.mean(axis=1)
-        normals = np.cross(polygons[:, 1] - polygons[:, 0], polygons[:, 2] - polygons[:, 1])
-        seen = np.einsum("ij,ij->i", normals, -centres) > 0  # the face turns towards the pinhole
-        order = np.argsort(-centres[:, 2])  # far faces first: nearer ones paint over them
-        seen_faces = [k for k in order if seen[k]]
-        colours = [(shades[k],) * 3 for k in seen_faces]
-        art["fills"]["box"].set_verts([np.column_stack(_to_plot(polygons[k])) for k in seen_faces])
-        art["fills"]["box"].set_facecolor(colours)
-        # the view looks from the pinhole's side: draw the seen faces' edges (not the hidden ones through the
-        # fills) and the rays from their corners
-        edges = np.concatenate(
-            [np.stack([polygons[k], np.roll(polygons[k], -1, axis=0)], axis=1) for k in seen_faces]
-        )
-        corners = np.unique(np.round(polygons[seen_faces].reshape(-1, 3), 12), axis=0)
-        edges = _unique_segments(
-            edges
-        )  # an edge two seen faces share, drawn once: halos drawn twice split it
-    art["box"].set_data_3d(*_polyline(edges))
-    for name, sign in (("real", -1), ("virtual", 1)):
-        z = sign * f_draw
-        sq = np.array(
-            [
-                [-h, -h * 0.75, z],
-                [h, -h * 0.75, z],
-                [h, h * 0.75, z],
-                [-h, h * 0.75, z],
-                [-h, -h * 0.75, z],
-            ]
-        )
-        art["planes"][name].set_data_3d(*_to_plot(sq))
-        img = _pinhole.project_pinhole(edges.reshape(-1, 3), f_draw, plane=name).reshape(-1, 2, 2)
-        art[name].set_data_3d(
-            *_polyline(np.concatenate([img, np.full(img.shape[:2] + (1,), z)], axis=2))
-        )
-        if faces is not None and art["fills"]:
-            # each face's picture, cut at the frame as the sensor cuts the image: what falls outside is not recorded
-            cut = [
-                (
-                    _clip_to_frame(
-                        _pinhole.project_pinhole(polygons[k], f_draw, plane=name), h, 0.75 * h
-                    ),
-                    colour,
-                )
-                for k, colour in zip(seen_faces, colours, strict=True)
-            ]
-            cut = [(p, colour) for p, colour in cut if len(p) >= 3]
-            art["fills"][name].set_verts(
-                [
-                    np.column_stack(_to_plot(np.column_stack([p, np.full(len(p), z)])))
-                    for p, _ in cut
-                ]
-            )
-            art["fills"][name].set_facecolor([colour for _, colour in cut])
-    ends = -corners * f_draw / corners[:, 2:3]  # through the pinhole to the real plane
-    art["rays"].set_data_3d(*_polyline(np.stack([corners, ends], axis=1)))
+    art["plane_half_drawn"] = view["plane_half"]
+    art["box"].set_data_3d(*_polyline(view["edges"]))
+    for name in ("box", "real", "virtual"):
+        if "fills" in view:
+            fills = view["fills"][name]
+            art["fills"][name].set_verts([np.column_stack(_to_plot(p)) for p, _ in fills])
+            art["fills"][name].set_facecolor([(grey,) * 3 for _, grey in fills])
+        if name != "box":
+            art["planes"][name].set_data_3d(*_to_plot(view["frames"][name]))
+            art[name].set_data_3d(*_polyline(view["images"][name]))
+    art["rays"].set_data_3d(*_polyline(view["rays"]))

@@ -61,6 +61,8 @@ MODULES = (
     "homography.js",
     "hierarchy.js",
     "forward_inverse.js",
+    "textured.js",
+    "pinhole.js",
     "corners.js",
     "drag.js",
     "widget.js",
@@ -95,7 +97,10 @@ class BrowserCanvas(anywidget.AnyWidget):
 
 
 def canvas_class(
-    params: Sequence[str], choices: Sequence[str] = (), texts: Sequence[str] = ()
+    params: Sequence[str],
+    choices: Sequence[str] = (),
+    texts: Sequence[str] = (),
+    flags: Sequence[str] = (),
 ) -> type[BrowserCanvas]:
     """A :class:`BrowserCanvas` with one synced trait per parameter the browser redraws on.
 
@@ -109,6 +114,8 @@ def canvas_class(
         trait each, linked to the control's ``index`` (its ``value`` is not synced to the browser).
     texts : sequence of str
         Those among ``params`` whose control is a text box: a string trait each.
+    flags : sequence of str
+        Those among ``params`` whose control is a checkbox: a boolean trait each.
 
     Returns
     -------
@@ -119,6 +126,8 @@ def canvas_class(
     def trait(name: str) -> traitlets.TraitType:
         if name in texts:
             return traitlets.Unicode("")
+        if name in flags:
+            return traitlets.Bool(False)
         return traitlets.Int(0) if name in choices else traitlets.Float(0.0)
 
     traits = {name: trait(name).tag(sync=True) for name in params}
@@ -219,7 +228,7 @@ class BrowserView(FigureView):
     asked (:meth:`pixels`, the static PNG). Headless (no kernel), or with browser drawing switched
     off (:func:`browser_drawing`), it is a plain FigureView in the display mode. ``params`` names
     the controls the browser redraws on; ``choices``, those of them that are choices (buttons);
-    ``texts``, those that are text boxes.
+    ``texts``, those that are text boxes; ``flags``, those that are checkboxes.
     """
 
     def __init__(
@@ -230,6 +239,7 @@ class BrowserView(FigureView):
         dpi: float = 90,
         choices: Sequence[str] = (),
         texts: Sequence[str] = (),
+        flags: Sequence[str] = (),
     ):
         wanted = mode or display_mode()
         browser = browser_drawing(wanted)
@@ -239,13 +249,14 @@ class BrowserView(FigureView):
         self.params = tuple(params)
         self.choices = tuple(choices)  # the parameters whose controls are choices (buttons)
         self.texts = tuple(texts)  # the parameters whose controls are text boxes
+        self.flags = tuple(flags)  # the parameters whose controls are checkboxes
         self._stale = False
         self.canvas: BrowserCanvas | None = None
         self.links: list[
             W.Widget
         ] = []  # slider -> canvas trait, in the browser (ipywidgets.jslink)
         if self.browser:
-            self.canvas = canvas_class(self.params, self.choices, self.texts)()
+            self.canvas = canvas_class(self.params, self.choices, self.texts, self.flags)()
             self.canvas.layout = W.Layout(max_width="100%")
             self.widget = self.canvas
 
@@ -294,7 +305,8 @@ class BrowserView(FigureView):
             control = demo.controls[name]
             trait = "index" if name in self.choices else "value"  # a choice syncs its index only
             value = getattr(control, trait)
-            setattr(self.canvas, name, value if name in self.choices + self.texts else float(value))
+            kept = self.choices + self.texts + self.flags  # the rest are sliders' numbers
+            setattr(self.canvas, name, value if name in kept else float(value))
             self.links.append(W.jslink((control, trait), (self.canvas, name)))
         self.canvas.alt = demo.alt_text
 

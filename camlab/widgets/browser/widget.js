@@ -8,6 +8,7 @@ import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
 import { drawHierarchy } from "./hierarchy.js";
 import { drawForwardInverse } from "./forward_inverse.js";
 import { dragCorners, drawDrag } from "./drag.js";
+import { drawPinhole } from "./pinhole.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
@@ -16,6 +17,7 @@ import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, dra
 // sliders by their links.
 const SCENES = {
   stack_check: { draw: drawStackCheck },
+  pinhole_projection: { draw: drawPinhole },
   similar_triangles: { draw: drawSimilarTriangles, drag: dragSimilarTriangles },
   three_cameras: { draw: drawThreeCameras },
   dolly_zoom: { draw: drawDollyZoom },
