@@ -19,6 +19,8 @@ from .. import camera as cm
 from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
+from .browser import BrowserView
+from .browser.camera_scenes import camera_explorer_scene
 from ._resection import k_readout as k_readout  # re-exported: it lived here
 from ._resection import place_camera_labels, resection_readout
 from .controls import int_slider
@@ -171,22 +173,22 @@ def explorer_plane_size(distance: float, K=None) -> float:
     return depth * min(1.0, 0.5 / reach)
 
 
-@register(
-    lesson="04",
-    sweep={
-        "fx": [200, 1600],
-        "fy": [200, 1600],
-        "cx": [-0.5, 639.5],
-        "cy": [-0.5, 479.5],
-        "skew": [-300, 300],
-        "azimuth": [-180, 100, 180],
-        "elevation": [ELEVATION_MIN, 80],
-        "distance": [2.5, 9.0],
-        "pan": [-30, 30],
-        "roll": [-90, 90],
-        "slide": [SLIDE_MIN, SLIDE_MAX],
-    },
-)
+EXPLORER_SWEEP = {
+    "fx": [200, 1600],
+    "fy": [200, 1600],
+    "cx": [-0.5, 639.5],
+    "cy": [-0.5, 479.5],
+    "skew": [-300, 300],
+    "azimuth": [-180, 100, 180],
+    "elevation": [ELEVATION_MIN, 80],
+    "distance": [2.5, 9.0],
+    "pan": [-30, 30],
+    "roll": [-90, 90],
+    "slide": [SLIDE_MIN, SLIDE_MAX],
+}  # every control, each at its ends (and the azimuth where the view turns most)
+
+
+@register(lesson="04", sweep=EXPLORER_SWEEP)
 def camera_explorer():
     """Intrinsics and pose sliders beside a live 3-D frustum view and the camera's image.
 
@@ -203,7 +205,7 @@ def camera_explorer():
         principal point), the matrices beside it and ``state`` (``camera``, ``K``, ``R``,
         ``t``, ``centre``, ``P``).
     """
-    view = FigureView(figsize=(9, 4.2))
+    view = BrowserView(tuple(EXPLORER_SWEEP), figsize=(9, 4.2))
     scene = fixtures.house_scene()
     cam0 = explorer_camera()
     # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
@@ -269,7 +271,7 @@ def camera_explorer():
         )
         state.update(camera=cam, K=cam.K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
 
-    return build_demo(
+    demo = build_demo(
         "camera_explorer",
         controls,
         view,
@@ -277,6 +279,12 @@ def camera_explorer():
         title="Drag the intrinsics and the pose: P = K [R | t]",
         extra=[info],
     )
+    # the browser draws the moves (projective_camera.js); the kernel keeps the matrices and state
+    world = dict(
+        target=TARGET, viewer_offset=VIEWER_OFFSET, pan_follow=PAN_FOLLOW, elev=VIEWER_ELEV, fill=0.85
+    )
+    view.publish(demo, camera_explorer_scene(view, sv, pp, world))
+    return demo
 
 
 def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):

@@ -8,6 +8,7 @@ import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
 import { drawHierarchy } from "./hierarchy.js";
 import { drawForwardInverse } from "./forward_inverse.js";
 import { dragCorners, drawDrag } from "./drag.js";
+import { drawCameraExplorer } from "./projective_camera.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
@@ -28,6 +29,7 @@ const SCENES = {
   transformation_hierarchy: { draw: drawHierarchy },
   forward_vs_inverse: { draw: drawForwardInverse },
   drag_homography: { draw: drawDrag, drag: dragCorners },
+  camera_explorer: { draw: drawCameraExplorer },
 };
 
 // The parameters' values by name, a choice's as its chosen option.
