@@ -38,6 +38,7 @@ BROWSER_DEMOS = {
     "transformation_hierarchy": "similarity",
     "forward_vs_inverse": "holes",
     "drag_homography": "cross-ratio",
+    "camera_explorer": "frustum",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 

@@ -168,3 +168,36 @@ def test_dolly_zoom_sends_its_panels_and_draws_as_headless(in_a_kernel, monkeypa
     headless.set(distance=30.0, offset=40)
     assert np.array_equal(live, headless.view.pixels())
     assert demo.state["rms_error"] == headless.state["rms_error"]
+
+
+def test_camera_explorer_sends_its_world_and_3d_panel_and_draws_as_headless(
+    in_a_kernel, monkeypatch
+):
+    from camlab.fixtures import house_scene
+    from camlab.widgets.projective_camera import camera_explorer
+
+    demo = camera_explorer()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "camera_explorer" and scene["params"] == list(demo.controls)
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links == {k: (c, "value") for k, c in demo.controls.items()}
+    assert np.array_equal(scene["segments"], house_scene())
+    # every animated artist is drawn, once, in the order a frame paints it: lines, the plane, texts
+    order = scene["order"]
+    assert len(order) == len(demo.view._animated) == len(set(order)) == 20
+    assert order.index("plane") > order.index("thumbnail") and order[-2:] == ["image", "principalPoint"]
+    assert scene["styles"]["worldLabel2"]["text"] == "Z" and "700" in scene["styles"]["worldLabel2"]["font"]
+    assert scene["styles"]["frustum"]["halo"] == "#ffffff"
+    # the 3-D axes' 2-D view box lands on its box in the canvas
+    p3 = scene["panel3d"]
+    x0, y0, x1, y1 = p3["viewBox"]
+    corners = np.array([[x0, y0, 1.0], [x1, y1, 1.0]]) @ np.array(p3["toPixels"]).T
+    box = p3["box"]
+    assert np.allclose(corners[:, :2], [[box["left"], box["bottom"]], [box["right"], box["top"]]])
+    demo.set(azimuth=100, roll=40, fx=300, slide=0.5)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = camera_explorer()
+    headless.set(azimuth=100, roll=40, fx=300, slide=0.5)
+    assert np.array_equal(live, headless.view.pixels())
+    assert np.array_equal(demo.state["P"], headless.state["P"])

@@ -75,7 +75,7 @@ export function lineOnScreen(M, points) {
 // the points, shifted across the line of sight until their picture is centred and zoomed until it
 // spans `fill` of the box. Returns {lims, zoom, M}.
 export function fitView(points, elev, azim, viewBox, fill = 0.92, maxZoom = 3.0) {
-  const pts = points.filter((p) => p.every(Number.isFinite)); // (a null, NaN in JSON, too)
+  const pts = points.filter((p) => p.every(Number.isFinite));
   const lo = [0, 1, 2].map((i) => Math.min(...pts.map((p) => p[i])));
   const hi = [0, 1, 2].map((i) => Math.max(...pts.map((p) => p[i])));
   const mid = lo.map((l, i) => (l + hi[i]) / 2);
