@@ -70,18 +70,27 @@ export function clipSegments(segments, [w, h]) {
 // Twin: camlab.plotting.scene3d.CameraArtist's geometry for a camera (update, corners, _axis_tips,
 // _label_position, extent_points): the frustum (centre-to-corner rays, then the plane's outline, NaN
 // between), the plane's corners, the axes from the centre, their label tips, the label's place and
-// the points the view keeps in sight. `size` is the plane's depth, `axisLength` the axes' length.
+// the points the view keeps in sight. `size` is the plane's depth, `axisLength` the axes' length
+// (null: no axes drawn), `labelOffset` the label's place (null: no label).
 export function cameraFigure(cam, size, axisLength, labelOffset, [w, h]) {
   const C = cam.centre;
   const corners = planePoints(cam, [[-0.5, -0.5], [w - 0.5, -0.5], [w - 0.5, h - 0.5], [-0.5, h - 0.5]], size);
   const gap = [NaN, NaN, NaN];
   const frustum = [...corners.flatMap((k) => [C, k, gap]), ...corners, corners[0]];
-  const tips = cam.R.map((row) => C.map((c, i) => c + 1.2 * axisLength * row[i]));
-  const axes = tips.map((tip) => [C, tip.map((x, i) => C[i] + (x - C[i]) / 1.2)]);
-  const [right, down, forward = 0] = labelOffset;
-  const k = Math.max(size, 0.5);
-  const labelAt = C.map((c, i) => c + k * (right * cam.R[0][i] + down * cam.R[1][i] + forward * cam.R[2][i]));
-  return { frustum, corners, axes, tips, labelAt, extent: [C, ...corners, ...tips, labelAt] };
+  const extent = [C, ...corners];
+  const out = { frustum, corners, extent };
+  if (axisLength !== null) {
+    out.tips = cam.R.map((row) => C.map((c, i) => c + 1.2 * axisLength * row[i]));
+    out.axes = out.tips.map((tip) => [C, tip.map((x, i) => C[i] + (x - C[i]) / 1.2)]);
+    extent.push(...out.tips);
+  }
+  if (labelOffset !== null) {
+    const [right, down, forward = 0] = labelOffset;
+    const k = Math.max(size, 0.5);
+    out.labelAt = C.map((c, i) => c + k * (right * cam.R[0][i] + down * cam.R[1][i] + forward * cam.R[2][i]));
+    extent.push(out.labelAt);
+  }
+  return out;
 }
 
 // The 3-D world of camera_explorer at the sliders' values, as its update leaves the artists:
@@ -110,46 +119,103 @@ function worldAxes(length) {
   });
 }
 
-export function drawCameraExplorer(ctx, scene, p) {
-  const frame = explorerFrame(scene, p);
-  const { figure, view } = frame;
+const GAP = [NaN, NaN, NaN];
+
+// The world axes' and a camera's parts by the names the scene's styles and order give them
+// (camera_scenes.py): world lines (3-D points, NaN between pieces), the plane's corners and texts
+// ({at: world point, and what changes of the text: text, ha, va}).
+function namedParts(scene, figure, cameraAxes, cameraLabels) {
+  const lines = { frustum: figure.frustum, plane: figure.corners };
+  const texts = {};
+  worldAxes(scene.worldAxisLength).forEach((a, i) => {
+    lines[`worldAxis${i}`] = a.line;
+    texts[`worldLabel${i}`] = { at: a.tip };
+  });
+  cameraAxes.forEach((a, i) => (lines[`cameraAxis${i}`] = a));
+  cameraLabels.forEach((t, i) => (texts[`cameraLabel${i}`] = t));
+  return { lines, texts };
+}
+
+// Paint a 3-D panel's artists (projection M) and the image panel's in the scene's order: a line or
+// a polygon clipped to its axes (Line3D's masked points break it), a round marker, a text unclipped;
+// `flat` holds the image panel's parts in its data coordinates.
+function paint(ctx, scene, M, lines, texts, flat = {}) {
   const st = scene.styles;
   const p3 = scene.panel3d, pi = scene.panelImage;
-  const onScreen = (pts) => mapPoints(p3.toPixels, lineOnScreen(view.M, pts));
-  const at = (X) => mapPoints(p3.toPixels, project3d(view.M, [X]).map(([x, y]) => [x, y]))[0];
-  const gap = [NaN, NaN, NaN];
-  const world = worldAxes(scene.worldAxisLength);
-  const lines = {
-    world: scene.segments.flatMap(([a, b]) => [a, b, gap]),
-    frustum: figure.frustum,
-    centre: [frame.cam.centre],
-    thumbnail: frame.thumbnail,
-  };
-  world.forEach((a, i) => (lines[`worldAxis${i}`] = a.line));
-  figure.axes.forEach((a, i) => (lines[`cameraAxis${i}`] = a));
-  const texts = { label: figure.labelAt };
-  world.forEach((a, i) => (texts[`worldLabel${i}`] = a.tip));
-  figure.tips.forEach((tip, i) => (texts[`cameraLabel${i}`] = tip));
   for (const name of scene.order) {
     const style = st[name];
     ctx.save();
     if (name in lines) {
       clipTo(ctx, p3.box);
-      const pts = onScreen(lines[name]);
+      const pts = mapPoints(p3.toPixels, lineOnScreen(M, lines[name]));
       if (style.marker) dot(ctx, pts[0], style.marker);
       else polyline(ctx, pts, style);
-    } else if (name === "plane") {
-      clipTo(ctx, p3.box);
-      polyline(ctx, onScreen(figure.corners), style);
     } else if (name in texts) {
-      label(ctx, style.text, at(texts[name]), style, style.ha, style.va);
-    } else if (name === "image") {
-      clipTo(ctx, pi.box);
-      polyline(ctx, mapPoints(pi.toPixels, frame.image), style);
-    } else if (name === "principalPoint") {
-      plus(ctx, mapPoints(pi.toPixels, [[frame.cam.K[0][2], frame.cam.K[1][2]]])[0], style);
+      const t = texts[name];
+      const [x, y] = project3d(M, [t.at])[0];
+      const at = mapPoints(p3.toPixels, [[x, y]])[0];
+      label(ctx, t.text ?? style.text, at, style, t.ha ?? style.ha, t.va ?? style.va);
+    } else if (name in flat) {
+      if (style.cross) plus(ctx, mapPoints(pi.toPixels, flat[name])[0], style.cross); // clip_on=False
+      else {
+        clipTo(ctx, pi.box);
+        polyline(ctx, mapPoints(pi.toPixels, flat[name]), style);
+      }
     }
     ctx.restore();
   }
+}
+
+export function drawCameraExplorer(ctx, scene, p) {
+  const frame = explorerFrame(scene, p);
+  const { figure, cam } = frame;
+  const { lines, texts } = namedParts(scene, figure, figure.axes, figure.tips.map((at) => ({ at })));
+  Object.assign(lines, {
+    world: scene.segments.flatMap(([a, b]) => [a, b, GAP]),
+    centre: [cam.centre],
+    thumbnail: frame.thumbnail,
+  });
+  texts.label = { at: figure.labelAt };
+  paint(ctx, scene, frame.view.M, lines, texts, { image: frame.image, principalPoint: [[cam.K[0][2], cam.K[1][2]]] });
+  return frame;
+}
+
+// Twin: camlab.plotting.view3d.align_away(ax, text, start, tip): a label at `tip` aligned to run away
+// from start -> tip on screen (projection M). [ha, va].
+export function alignAway(M, start, tip) {
+  const [[x0, y0], [x1, y1]] = project3d(M, [start, tip]);
+  return [x1 >= x0 ? "left" : "right", y1 >= y0 ? "bottom" : "top"];
+}
+
+// Twin: camlab.widgets.projective_camera.opencv_vs_opengl's update: the camera orbited `orbit`
+// degrees about the world's vertical, looking at the target; its axes drawn as R's rows (OpenCV) or
+// R_gl's (OpenGL / Blender: rows 2 and 3 flipped), labelled by the frame; the viewer turned half as
+// far; the view fitted to the house, the origin, both frames' label tips and the camera.
+export function opencvFrame(scene, p) {
+  const eye = matmul(rotationZ(p.orbit * RAD), scene.eye.map((c) => [c])).map((row) => row[0]);
+  const R = lookAt(eye, scene.target);
+  const cam = { K: scene.K, R, t: R.map((row) => -dot3(row, eye)), centre: eye };
+  const gl = p.frame !== "OpenCV";
+  const axesR = gl ? [R[0], R[1].map((c) => -c), R[2].map((c) => -c)] : R;
+  const names = gl ? scene.names.opengl : scene.names.opencv;
+  const C = eye;
+  const along = (v, k) => C.map((c, i) => c + k * v[i]);
+  const labelTips = [...R, R[1].map((c) => -c), R[2].map((c) => -c)].map((row) => along(row, scene.tips));
+  const figure = cameraFigure(cam, scene.planeSize, null, null, scene.imageSize);
+  const azim = scene.azim0 + scene.follow * p.orbit;
+  const view = fitView([...scene.house.flat(), [0, 0, 0], ...labelTips, ...figure.extent], scene.elev, azim, scene.panel3d.viewBox, scene.panel3d.fill);
+  const axes = axesR.map((row, i) => {
+    const e = along(row, scene.axis);
+    const [ha, va] = alignAway(view.M, C, e);
+    return { line: [C, e], label: { at: along(row, scene.label), text: names[i], ha, va } };
+  });
+  return { cam, figure, axes, axesR, view, azim };
+}
+
+export function drawOpencvVsOpengl(ctx, scene, p) {
+  const frame = opencvFrame(scene, p);
+  const { lines, texts } = namedParts(scene, frame.figure, frame.axes.map((a) => a.line), frame.axes.map((a) => a.label));
+  Object.assign(lines, { house: scene.house.flatMap(([a, b]) => [a, b, GAP]), centre: [frame.cam.centre] });
+  paint(ctx, scene, frame.view.M, lines, texts);
   return frame;
 }
