@@ -220,3 +220,43 @@ def test_the_explorer_frame_equals_the_demo(monkeypatch):
         assert_twins(js["thumbnail"], py["thumbnail"], "explorerFrame thumbnail")
         assert_twins(js["image"], py["image"], "explorerFrame image")
         assert_twins(js["azim"], py["azim"], "explorerFrame viewer azimuth")
+
+
+def test_the_opencv_vs_opengl_frame_equals_the_demo(monkeypatch):
+    """opencvFrame at random orbits in both frames: the projection and limits, the camera's axes,
+    their labels' places, words and alignment (align_away), as the demo's update leaves them."""
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "ipympl")
+    monkeypatch.delenv("CAMLAB_BROWSER_DRAWING", raising=False)
+    from camlab.widgets.projective_camera import opencv_vs_opengl
+
+    demo = opencv_vs_opengl()
+    scene = {k: v for k, v in demo.view.canvas.scene.items() if k != "background"}
+    (ax,) = demo.figure.axes
+    rng = np.random.default_rng(46)
+    orbits = [-90.0, 90.0, 0.0, *rng.uniform(-90, 90, 37)]
+    calls, want = [], []
+    for k, orbit in enumerate(orbits):
+        frame = ("OpenCV", "OpenGL / Blender")[k % 2]
+        demo.set(orbit=float(orbit), frame=frame)
+        calls.append(["opencvFrame", [scene, {"orbit": float(orbit), "frame": frame}]])
+        lines, texts = ax.lines[-3:], ax.texts[-3:]
+        want.append(
+            dict(
+                M=ax.M,
+                lims=[ax.get_xlim3d(), ax.get_ylim3d(), ax.get_zlim3d()],
+                axes=[np.column_stack(ln.get_data_3d()) for ln in lines],
+                labels=[
+                    (tx.get_position_3d(), tx.get_text(), tx.get_ha(), tx.get_va()) for tx in texts
+                ],
+                R_axes=demo.state["R_axes"],
+            )
+        )
+    got = run_js(calls, CAMERA)
+    for js, py in zip(got, want, strict=True):
+        assert_twins(js["view"]["M"], py["M"], "opencvFrame projection")
+        assert_twins(js["view"]["lims"], py["lims"], "opencvFrame limits")
+        assert_twins(js["axesR"], py["R_axes"], "opencvFrame axes")
+        assert_twins([a["line"] for a in js["axes"]], py["axes"], "opencvFrame axis lines")
+        for a, (at, text, ha, va) in zip(js["axes"], py["labels"], strict=True):
+            assert_twins(a["label"]["at"], at, "opencvFrame label place")
+            assert (a["label"]["text"], a["label"]["ha"], a["label"]["va"]) == (text, ha, va)

@@ -39,6 +39,7 @@ BROWSER_DEMOS = {
     "forward_vs_inverse": "holes",
     "drag_homography": "cross-ratio",
     "camera_explorer": "frustum",
+    "opencv_vs_opengl": "opengl",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
@@ -410,3 +411,21 @@ def test_typed_corners_of_a_bow_tie_tear_the_drag_homography_canvas_as_matplotli
     assert 0 < changed.mean() < 0.05, (
         f"{changed.mean():.1%} of the canvas changed: only the note should"
     )
+
+
+def test_the_opencv_vs_opengl_canvas_follows_its_frame_buttons(lab_page):
+    """opencv_vs_opengl's frame (toggle buttons: the index is linked, widget.js names the option)
+    relabels and flips the camera's axes on the canvas as matplotlib draws them."""
+    page = lab_page
+    name = "opencv_vs_opengl"
+    _shown(page, name)
+    page.locator(f".{css(name)} button", has_text="OpenGL / Blender").click()
+    page.wait_for_timeout(500)
+    values = slider_values(page, name)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_opengl", live)
+    share = drawn_as_matplotlib_draws_it(name, live, dict(values, frame="OpenGL / Blender"))
+    assert share >= 0.95, f"in the OpenGL frame the canvas matches matplotlib's on {share:.0%}"
+    opencv = drawn_as_matplotlib_draws_it(name, live, dict(values, frame="OpenCV"))
+    assert opencv < 0.9, f"the canvas still shows the OpenCV frame ({opencv:.0%} alike)"

@@ -201,3 +201,26 @@ def test_camera_explorer_sends_its_world_and_3d_panel_and_draws_as_headless(
     headless.set(azimuth=100, roll=40, fx=300, slide=0.5)
     assert np.array_equal(live, headless.view.pixels())
     assert np.array_equal(demo.state["P"], headless.state["P"])
+
+
+def test_opencv_vs_opengl_links_its_orbit_and_frame_and_draws_as_headless(
+    in_a_kernel, monkeypatch
+):
+    from camlab.widgets.projective_camera import GL_NAMES, opencv_vs_opengl
+
+    demo = opencv_vs_opengl()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "opencv_vs_opengl" and scene["params"] == ["orbit", "frame"]
+    assert scene["choices"] == {"frame": ["OpenCV", "OpenGL / Blender"]}
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links == {"orbit": (demo.controls["orbit"], "value"), "frame": (demo.controls["frame"], "index")}
+    assert scene["names"] == {k: list(v) for k, v in GL_NAMES.items()}
+    # every animated artist but the empty thumbnail (no image lines on the plane here)
+    assert len(scene["order"]) == len(set(scene["order"])) == len(demo.view._animated) - 1 == 16
+    demo.set(orbit=-70, frame="OpenGL / Blender")
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = opencv_vs_opengl()
+    headless.set(orbit=-70, frame="OpenGL / Blender")
+    assert np.array_equal(live, headless.view.pixels())
+    assert np.array_equal(demo.state["matrix_world"], headless.state["matrix_world"])
