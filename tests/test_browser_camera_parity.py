@@ -165,8 +165,12 @@ def test_the_camera_figure_equals_the_camera_artist():
         art = scene3d.CameraArtist(ax, cam, size=size, label="C", axis_length=length)
         art.label_offset = tuple(offset)
         art.update(cam)
-        js_cam = dict(K=cam.K.tolist(), R=cam.R.tolist(), t=cam.t.tolist(), centre=cam.centre.tolist())
-        calls.append(["cameraFigure", [js_cam, size, length, offset.tolist(), list(cam.image_size)]])
+        js_cam = dict(
+            K=cam.K.tolist(), R=cam.R.tolist(), t=cam.t.tolist(), centre=cam.centre.tolist()
+        )
+        calls.append(
+            ["cameraFigure", [js_cam, size, length, offset.tolist(), list(cam.image_size)]]
+        )
         want.append(
             dict(
                 frustum=np.column_stack(art.frustum.get_data_3d()),

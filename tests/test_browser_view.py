@@ -185,8 +185,14 @@ def test_camera_explorer_sends_its_world_and_3d_panel_and_draws_as_headless(
     # every animated artist is drawn, once, in the order a frame paints it: lines, the plane, texts
     order = scene["order"]
     assert len(order) == len(demo.view._animated) == len(set(order)) == 20
-    assert order.index("plane") > order.index("thumbnail") and order[-2:] == ["image", "principalPoint"]
-    assert scene["styles"]["worldLabel2"]["text"] == "Z" and "700" in scene["styles"]["worldLabel2"]["font"]
+    assert order.index("plane") > order.index("thumbnail") and order[-2:] == [
+        "image",
+        "principalPoint",
+    ]
+    assert (
+        scene["styles"]["worldLabel2"]["text"] == "Z"
+        and "700" in scene["styles"]["worldLabel2"]["font"]
+    )
     assert scene["styles"]["frustum"]["halo"] == "#ffffff"
     # the 3-D axes' 2-D view box lands on its box in the canvas
     p3 = scene["panel3d"]
@@ -203,9 +209,7 @@ def test_camera_explorer_sends_its_world_and_3d_panel_and_draws_as_headless(
     assert np.array_equal(demo.state["P"], headless.state["P"])
 
 
-def test_opencv_vs_opengl_links_its_orbit_and_frame_and_draws_as_headless(
-    in_a_kernel, monkeypatch
-):
+def test_opencv_vs_opengl_links_its_orbit_and_frame_and_draws_as_headless(in_a_kernel, monkeypatch):
     from camlab.widgets.projective_camera import GL_NAMES, opencv_vs_opengl
 
     demo = opencv_vs_opengl()
@@ -213,7 +217,10 @@ def test_opencv_vs_opengl_links_its_orbit_and_frame_and_draws_as_headless(
     assert scene["kind"] == "opencv_vs_opengl" and scene["params"] == ["orbit", "frame"]
     assert scene["choices"] == {"frame": ["OpenCV", "OpenGL / Blender"]}
     links = {link.target[1]: link.source for link in demo.view.links}
-    assert links == {"orbit": (demo.controls["orbit"], "value"), "frame": (demo.controls["frame"], "index")}
+    assert links == {
+        "orbit": (demo.controls["orbit"], "value"),
+        "frame": (demo.controls["frame"], "index"),
+    }
     assert scene["names"] == {k: list(v) for k, v in GL_NAMES.items()}
     # every animated artist but the empty thumbnail (no image lines on the plane here)
     assert len(scene["order"]) == len(set(scene["order"])) == len(demo.view._animated) - 1 == 16

@@ -19,10 +19,10 @@ from .. import camera as cm
 from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
-from .browser import BrowserView
-from .browser.camera_scenes import camera_explorer_scene, opencv_vs_opengl_scene
 from ._resection import k_readout as k_readout  # re-exported: it lived here
 from ._resection import place_camera_labels, resection_readout
+from .browser import BrowserView
+from .browser.camera_scenes import camera_explorer_scene, opencv_vs_opengl_scene
 from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
@@ -290,7 +290,11 @@ def camera_explorer():
     )
     # the browser draws the moves (projective_camera.js); the kernel keeps the matrices and state
     world = dict(
-        target=TARGET, viewer_offset=VIEWER_OFFSET, pan_follow=PAN_FOLLOW, elev=VIEWER_ELEV, fill=0.85
+        target=TARGET,
+        viewer_offset=VIEWER_OFFSET,
+        pan_follow=PAN_FOLLOW,
+        elev=VIEWER_ELEV,
+        fill=0.85,
     )
     view.publish(demo, camera_explorer_scene(view, sv, pp, world))
     return demo

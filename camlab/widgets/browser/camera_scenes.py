@@ -10,9 +10,8 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from matplotlib.colors import to_rgba
-
 from matplotlib.collections import Collection
+from matplotlib.colors import to_rgba
 from matplotlib.text import Text
 
 from . import marker_style, text_style, to_canvas_pixels
@@ -233,7 +232,9 @@ def opencv_vs_opengl_scene(view: Any, ax: Any, parts: dict, world: dict) -> dict
     """
     art = parts["camera"]
     axes, length = _world_axes(parts["world"])
-    named = dict(house=parts["house"], frustum=art.frustum, plane=art.plane, centre=art.centre_marker)
+    named = dict(
+        house=parts["house"], frustum=art.frustum, plane=art.plane, centre=art.centre_marker
+    )
     named |= axes | _axes_named("camera", parts["lines"], parts["texts"])
     cam = world["camera"]
     return dict(
