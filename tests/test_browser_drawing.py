@@ -429,3 +429,29 @@ def test_the_opencv_vs_opengl_canvas_follows_its_frame_buttons(lab_page):
     assert share >= 0.95, f"in the OpenGL frame the canvas matches matplotlib's on {share:.0%}"
     opencv = drawn_as_matplotlib_draws_it(name, live, dict(values, frame="OpenCV"))
     assert opencv < 0.9, f"the canvas still shows the OpenCV frame ({opencv:.0%} alike)"
+
+
+def test_the_camera_explorer_canvas_follows_the_pose_and_intrinsics_to_their_ends(lab_page):
+    """camera_explorer with four sliders at their ends (the skew, the orbit, the roll, the slide):
+    the 3-D view turned and refitted, the frustum and the image, as matplotlib draws them."""
+    page = lab_page
+    name = "camera_explorer"
+    _shown(page, name)
+    handles = page.locator(f".{css(name)} .widget-slider .noUi-handle")
+    ends = {4: ("End", 300.0), 5: ("Home", -180.0), 9: ("End", 90.0), 10: ("Home", -1.0)}
+    for i, (key, value) in ends.items():
+        handles.nth(i).focus()
+        page.keyboard.press(key)
+        page.wait_for_function(  # the slider's readout, at its end
+            "([s, i, v]) => { const r = document.querySelectorAll(s); return r.length > i"
+            " && parseFloat(r[i].textContent.replace('\u2212', '-')) === v; }",
+            arg=[f".{css(name)} .widget-readout", i, value],
+            polling=100,
+        )
+    page.wait_for_timeout(300)
+    values = slider_values(page, name)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_ends", live)
+    share = drawn_as_matplotlib_draws_it(name, live, values)
+    assert share >= 0.95, f"at {values} the canvas matches matplotlib's on {share:.0%}"
