@@ -39,6 +39,8 @@ BROWSER_DEMOS = {
     "transformation_hierarchy": "similarity",
     "forward_vs_inverse": "holes",
     "drag_homography": "cross-ratio",
+    "camera_explorer": "frustum",
+    "opencv_vs_opengl": "opengl",
 }
 CANVAS = "canvas.camlab-browser-canvas"
 
@@ -47,6 +49,12 @@ CANVAS_PIXELS = """(s) => {
   const c = document.querySelector(s);
   return [c.width, c.height, Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data)];
 }"""
+
+
+def canvas_pixels(page, name: str) -> np.ndarray:
+    """The demo's canvas as the page holds it: an (H, W, 4) uint8 array."""
+    width, height, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    return np.array(data, dtype=np.uint8).reshape(height, width, 4)
 
 
 def css(name: str) -> str:
@@ -206,12 +214,11 @@ def test_a_browser_drawn_demo_answers_a_keydown_within_50_ms_as_matplotlib_draws
     page.wait_for_timeout(300)
     after = canvas.screenshot()
     values = slider_values(page, name)
-    width, height, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = canvas_pixels(page, name)
     assert all(s >= 0 for s in samples), f"a keydown left the canvas unchanged for 5 s: {samples}"
     median, p95 = statistics.median(samples), float(np.percentile(samples, 95))
     print(json.dumps({"demo": name, "path": "browser", "median_ms": median, "p95_ms": p95}))
     assert before != after, "the canvas looks the same after the slider moved"
-    live = np.array(data, dtype=np.uint8).reshape(height, width, 4)
     share = drawn_as_matplotlib_draws_it(name, live, values)
     print(json.dumps({"demo": name, "values": values, "share": round(share, 4)}))
     snapshot(name, live)
@@ -265,8 +272,7 @@ def test_a_drag_on_the_similar_triangles_canvas_moves_the_object_point_and_the_k
     )
     values = slider_values(page, name)
     assert (values["Z"], values["Y"]) == (4.0, 0.5), f"the drag left the sliders at {values}"
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    live = canvas_pixels(page, name)
     share = drawn_as_matplotlib_draws_it(name, live, values)
     assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
 
@@ -286,15 +292,13 @@ def test_a_drag_in_the_left_image_moves_the_epipolar_point(lab_page):
     values = slider_values(page, name)
     assert (values["u"], values["v"]) == (200.0, 150.0), f"the drag left the sliders at {values}"
     page.wait_for_timeout(300)
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    live = canvas_pixels(page, name)
     share = drawn_as_matplotlib_draws_it(name, live, values)
     assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
     # the motion's buttons reach the canvas too (a choice: its index is linked, widget.js names it)
     page.locator(f".{css(name)} button", has_text="forward (driving)").click()
     page.wait_for_timeout(500)
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    live = canvas_pixels(page, name)
     snapshot(name + "_forward", live)
     share = drawn_as_matplotlib_draws_it(name, live, dict(values, motion="forward (driving)"))
     assert share >= 0.95, f"in forward motion the canvas matches matplotlib's on {share:.0%}"
@@ -328,8 +332,7 @@ def test_the_transformation_hierarchy_canvas_follows_the_group_and_its_tear(lab_
         pytest.fail("v1's readout never reached 15 after 30 presses of End")
     page.wait_for_timeout(300)
     values = slider_values(page, name)
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    live = canvas_pixels(page, name)
     snapshot(name + "_torn", live)
     share = drawn_as_matplotlib_draws_it(name, live, dict(values, group="projective"))
     assert share >= 0.95, f"torn, the canvas matches matplotlib's on {share:.0%}"
@@ -374,8 +377,7 @@ def test_a_drag_of_a_corner_on_the_drag_homography_canvas_writes_the_corners_and
     )
     page.wait_for_timeout(500)
     corners = page.locator(f".{css(name)} input[type=text]").input_value()
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    live = canvas_pixels(page, name)
     snapshot(name + "_dragged", live)
     share = drawn_as_matplotlib_draws_it(name, live, {"corners": corners})
     assert share >= 0.95, f"after the drag the canvas matches matplotlib's on {share:.0%}"
@@ -397,16 +399,14 @@ def test_typed_corners_of_a_bow_tie_tear_the_drag_homography_canvas_as_matplotli
     box.fill(bow_tie)
     box.press("Enter")
     page.wait_for_timeout(500)
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    torn = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    torn = canvas_pixels(page, name)
     snapshot(name + "_torn", torn)
     share = drawn_as_matplotlib_draws_it(name, torn, {"corners": bow_tie})
     assert share >= 0.95, f"torn, the canvas matches matplotlib's on {share:.0%}"
     box.fill("1, 2; 3, 4")
     box.press("Enter")
     page.wait_for_timeout(500)
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    kept = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    kept = canvas_pixels(page, name)
     snapshot(name + "_cannot", kept)
     changed = np.abs(kept[..., :3].astype(int) - torn[..., :3]).max(axis=-1) > 0
     assert 0 < changed.mean() < 0.05, (
@@ -425,9 +425,50 @@ def test_the_real_plane_checkbox_turns_the_pinhole_projection_image_in_the_brows
     page.wait_for_timeout(500)
     assert canvas.screenshot() != before, "the checkbox did not change the canvas"
     values = dict(slider_values(page, name), real_plane=True)
-    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
-    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    live = canvas_pixels(page, name)
     snapshot(name + "_real", live)
     share = drawn_as_matplotlib_draws_it(name, live, values)
     print(json.dumps({"demo": name, "values": values, "share": round(share, 4)}))
     assert share >= 0.95, f"with the real plane the canvas matches matplotlib's on {share:.0%}"
+
+
+def test_the_opencv_vs_opengl_canvas_follows_its_frame_buttons(lab_page):
+    """opencv_vs_opengl's frame (toggle buttons: the index is linked, widget.js names the option)
+    relabels and flips the camera's axes on the canvas as matplotlib draws them."""
+    page = lab_page
+    name = "opencv_vs_opengl"
+    _shown(page, name)
+    page.locator(f".{css(name)} button", has_text="OpenGL / Blender").click()
+    page.wait_for_timeout(500)
+    values = slider_values(page, name)
+    live = canvas_pixels(page, name)
+    snapshot(name + "_opengl", live)
+    share = drawn_as_matplotlib_draws_it(name, live, dict(values, frame="OpenGL / Blender"))
+    assert share >= 0.95, f"in the OpenGL frame the canvas matches matplotlib's on {share:.0%}"
+    opencv = drawn_as_matplotlib_draws_it(name, live, dict(values, frame="OpenCV"))
+    assert opencv < 0.9, f"the canvas still shows the OpenCV frame ({opencv:.0%} alike)"
+
+
+def test_the_camera_explorer_canvas_follows_the_pose_and_intrinsics_to_their_ends(lab_page):
+    """camera_explorer with four sliders at their ends (the skew, the orbit, the roll, the slide):
+    the 3-D view turned and refitted, the frustum and the image, as matplotlib draws them."""
+    page = lab_page
+    name = "camera_explorer"
+    _shown(page, name)
+    handles = page.locator(f".{css(name)} .widget-slider .noUi-handle")
+    ends = {4: ("End", 300.0), 5: ("Home", -180.0), 9: ("End", 90.0), 10: ("Home", -1.0)}
+    for i, (key, value) in ends.items():
+        handles.nth(i).focus()
+        page.keyboard.press(key)
+        page.wait_for_function(  # the slider's readout, at its end
+            "([s, i, v]) => { const r = document.querySelectorAll(s); return r.length > i"
+            " && parseFloat(r[i].textContent.replace('\u2212', '-')) === v; }",
+            arg=[f".{css(name)} .widget-readout", i, value],
+            polling=100,
+        )
+    page.wait_for_timeout(300)
+    values = slider_values(page, name)
+    live = canvas_pixels(page, name)
+    snapshot(name + "_ends", live)
+    share = drawn_as_matplotlib_draws_it(name, live, values)
+    assert share >= 0.95, f"at {values} the canvas matches matplotlib's on {share:.0%}"

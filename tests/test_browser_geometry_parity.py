@@ -41,7 +41,7 @@ import * as G from %s;
 let input = "";
 process.stdin.on("data", (d) => (input += d));
 process.stdin.on("end", () => {
-  const calls = JSON.parse(input);
+  const calls = JSON.parse(input, (k, v) => (v === "NaN" ? NaN : v)); // NaN is sent as "NaN" (JSON has none)
   const out = calls.map(([name, args]) => G[name](...args));
   process.stdout.write(JSON.stringify(out, (k, v) => (ArrayBuffer.isView(v) ? Array.from(v) : typeof v === "number" && !Number.isFinite(v) ? String(v) : v)));
 });

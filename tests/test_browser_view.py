@@ -197,3 +197,66 @@ def test_pinhole_projection_links_its_checkbox_as_a_flag_and_sends_its_textured_
     headless = pinhole_projection()
     headless.set(focal_mm=83.0, distance=1.1, real_plane=True)
     assert np.array_equal(live, headless.view.pixels())
+
+
+def test_camera_explorer_sends_its_world_and_3d_panel_and_draws_as_headless(
+    in_a_kernel, monkeypatch
+):
+    from camlab.fixtures import house_scene
+    from camlab.widgets.projective_camera import camera_explorer
+
+    demo = camera_explorer()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "camera_explorer" and scene["params"] == list(demo.controls)
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links == {k: (c, "value") for k, c in demo.controls.items()}
+    assert np.array_equal(scene["segments"], house_scene())
+    # every animated artist is drawn, once, in the order a frame paints it: lines, the plane, texts
+    order = scene["order"]
+    assert len(order) == len(demo.view._animated) == len(set(order)) == 20
+    assert order.index("plane") > order.index("thumbnail") and order[-2:] == [
+        "image",
+        "principalPoint",
+    ]
+    assert (
+        scene["styles"]["worldLabel2"]["text"] == "Z"
+        and "700" in scene["styles"]["worldLabel2"]["font"]
+    )
+    assert scene["styles"]["frustum"]["halo"] == "#ffffff"
+    # the 3-D axes' 2-D view box lands on its box in the canvas
+    p3 = scene["panel3d"]
+    x0, y0, x1, y1 = p3["viewBox"]
+    corners = np.array([[x0, y0, 1.0], [x1, y1, 1.0]]) @ np.array(p3["toPixels"]).T
+    box = p3["box"]
+    assert np.allclose(corners[:, :2], [[box["left"], box["bottom"]], [box["right"], box["top"]]])
+    demo.set(azimuth=100, roll=40, fx=300, slide=0.5)
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = camera_explorer()
+    headless.set(azimuth=100, roll=40, fx=300, slide=0.5)
+    assert np.array_equal(live, headless.view.pixels())
+    assert np.array_equal(demo.state["P"], headless.state["P"])
+
+
+def test_opencv_vs_opengl_links_its_orbit_and_frame_and_draws_as_headless(in_a_kernel, monkeypatch):
+    from camlab.widgets.projective_camera import GL_NAMES, opencv_vs_opengl
+
+    demo = opencv_vs_opengl()
+    scene = demo.view.canvas.scene
+    assert scene["kind"] == "opencv_vs_opengl" and scene["params"] == ["orbit", "frame"]
+    assert scene["choices"] == {"frame": ["OpenCV", "OpenGL / Blender"]}
+    links = {link.target[1]: link.source for link in demo.view.links}
+    assert links == {
+        "orbit": (demo.controls["orbit"], "value"),
+        "frame": (demo.controls["frame"], "index"),
+    }
+    assert scene["names"] == {k: list(v) for k, v in GL_NAMES.items()}
+    # every animated artist but the empty thumbnail (no image lines on the plane here)
+    assert len(scene["order"]) == len(set(scene["order"])) == len(demo.view._animated) - 1 == 16
+    demo.set(orbit=-70, frame="OpenGL / Blender")
+    live = demo.view.pixels()
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = opencv_vs_opengl()
+    headless.set(orbit=-70, frame="OpenGL / Blender")
+    assert np.array_equal(live, headless.view.pixels())
+    assert np.array_equal(demo.state["matrix_world"], headless.state["matrix_world"])

@@ -21,6 +21,8 @@ from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
 from ._resection import k_readout as k_readout  # re-exported: it lived here
 from ._resection import place_camera_labels, resection_readout
+from .browser import BrowserView
+from .browser.camera_scenes import camera_explorer_scene, opencv_vs_opengl_scene
 from .controls import int_slider
 
 TARGET = np.array([0.0, 0.0, 0.7])
@@ -57,10 +59,19 @@ EYE_GL = np.array(
 # folds onto y down; a fixed viewer would see x point at it, drawn straight down over y, at some orbit angle.
 # From this side "z forward" points away from the house, up the screen.
 VIEW_GL_ELEV = 30.0
+VIEW_GL_AZIM0, VIEW_GL_FOLLOW = -30.0, 0.5
+GL_TARGET = np.array([0.0, 0.0, 0.4])  # where opencv_vs_opengl's camera looks
+# its axes 0.9 m long, labelled 1.05 m out; the view keeps both frames' labels (1.3 m out) in sight
+GL_AXIS_M, GL_LABEL_M, GL_TIPS_M = 0.9, 1.05, 1.3
+GL_FILL = 0.8  # the share of the 3-D panel the fitted view spans
+GL_NAMES = {
+    "opencv": ("x right", "y down", "z forward"),
+    "opengl": ("x right", "y up", "z backward"),
+}
 
 
 def _view_gl_azim(orbit: float) -> float:
-    return -30.0 + 0.5 * orbit
+    return VIEW_GL_AZIM0 + VIEW_GL_FOLLOW * orbit
 
 
 def _fmt(v: np.ndarray) -> str:
@@ -171,22 +182,22 @@ def explorer_plane_size(distance: float, K=None) -> float:
     return depth * min(1.0, 0.5 / reach)
 
 
-@register(
-    lesson="04",
-    sweep={
-        "fx": [200, 1600],
-        "fy": [200, 1600],
-        "cx": [-0.5, 639.5],
-        "cy": [-0.5, 479.5],
-        "skew": [-300, 300],
-        "azimuth": [-180, 100, 180],
-        "elevation": [ELEVATION_MIN, 80],
-        "distance": [2.5, 9.0],
-        "pan": [-30, 30],
-        "roll": [-90, 90],
-        "slide": [SLIDE_MIN, SLIDE_MAX],
-    },
-)
+EXPLORER_SWEEP = {
+    "fx": [200, 1600],
+    "fy": [200, 1600],
+    "cx": [-0.5, 639.5],
+    "cy": [-0.5, 479.5],
+    "skew": [-300, 300],
+    "azimuth": [-180, 100, 180],
+    "elevation": [ELEVATION_MIN, 80],
+    "distance": [2.5, 9.0],
+    "pan": [-30, 30],
+    "roll": [-90, 90],
+    "slide": [SLIDE_MIN, SLIDE_MAX],
+}  # every control, each at its ends (and the azimuth where the view turns most)
+
+
+@register(lesson="04", sweep=EXPLORER_SWEEP)
 def camera_explorer():
     """Intrinsics and pose sliders beside a live 3-D frustum view and the camera's image.
 
@@ -203,7 +214,7 @@ def camera_explorer():
         principal point), the matrices beside it and ``state`` (``camera``, ``K``, ``R``,
         ``t``, ``centre``, ``P``).
     """
-    view = FigureView(figsize=(9, 4.2))
+    view = BrowserView(tuple(EXPLORER_SWEEP), figsize=(9, 4.2))
     scene = fixtures.house_scene()
     cam0 = explorer_camera()
     # Seen from behind the camera's shoulder, with only the house on the image plane: the small picture
@@ -269,7 +280,7 @@ def camera_explorer():
         )
         state.update(camera=cam, K=cam.K, R=cam.R, t=cam.t, centre=cam.centre, P=cam.P)
 
-    return build_demo(
+    demo = build_demo(
         "camera_explorer",
         controls,
         view,
@@ -277,6 +288,16 @@ def camera_explorer():
         title="Drag the intrinsics and the pose: P = K [R | t]",
         extra=[info],
     )
+    # the browser draws the moves (projective_camera.js); the kernel keeps the matrices and state
+    world = dict(
+        target=TARGET,
+        viewer_offset=VIEWER_OFFSET,
+        pan_follow=PAN_FOLLOW,
+        elev=VIEWER_ELEV,
+        fill=0.85,
+    )
+    view.publish(demo, camera_explorer_scene(view, sv, pp, world))
+    return demo
 
 
 def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
@@ -812,8 +833,8 @@ def opencv_vs_opengl():
         ``frame``; ``camera``; ``matrix_world``).
     """
     # 600 px: the axes and their labels readable beside the matrices
-    view = FigureView(figsize=(6.0, 4.0))
-    ax, house_segments, art, lines, texts = _opengl_figure(view)
+    view = BrowserView(("orbit", "frame"), figsize=(6.0, 4.0), choices=("frame",))
+    ax, house_segments, art, lines, texts, (world_axes, house) = _opengl_figure(view)
     title = W.HTML()  # the formula beside the figure: long canvas text costs ~7 ms per redraw
     controls = {
         "orbit": slider(0, -90, 90, 2, "orbit (deg)"),
@@ -824,24 +845,24 @@ def opencv_vs_opengl():
 
     def update(v, state):
         eye = cm.rotation_z(np.deg2rad(v["orbit"])) @ EYE_GL
-        cam = cm.Camera.look_at(eye, [0.0, 0.0, 0.4])
+        cam = cm.Camera.look_at(eye, GL_TARGET)
         ax.view_init(
             elev=VIEW_GL_ELEV, azim=_view_gl_azim(v["orbit"])
         )  # before fit_view, which refreshes
         art.update(cam)
         gl = v["frame"] != "OpenCV"
         R_axes = cm.opengl_from_opencv(cam.R, cam.t)[0] if gl else cam.R
-        names = ("x right", "y up", "z backward") if gl else ("x right", "y down", "z forward")
+        names = GL_NAMES["opengl" if gl else "opencv"]
         C = cam.centre
         # The limits fit both frames' label tips, so toggling the frame changes only the labels
-        label_tips = C + 1.3 * np.vstack([cam.R, -cam.R[1:]])
+        label_tips = C + GL_TIPS_M * np.vstack([cam.R, -cam.R[1:]])
         scene3d.fit_view(
-            ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=0.8
+            ax, [house_segments, np.zeros(3), label_tips, art.extent_points(cam)], fill=GL_FILL
         )
         for i, (ln, tx) in enumerate(zip(lines, texts, strict=True)):
-            e = C + 0.9 * R_axes[i]  # row i of R = camera axis i in world coordinates
+            e = C + GL_AXIS_M * R_axes[i]  # row i of R = camera axis i in world coordinates
             ln.set_data_3d([C[0], e[0]], [C[1], e[1]], [C[2], e[2]])
-            tx.set_position_3d(C + 1.05 * R_axes[i])
+            tx.set_position_3d(C + GL_LABEL_M * R_axes[i])
             tx.set_text(names[i])
             scene3d.align_away(ax, tx, C, e)
         R_gl, t_gl = cm.opengl_from_opencv(cam.R, cam.t)
@@ -850,7 +871,7 @@ def opencv_vs_opengl():
         title.value = _opengl_text(gl, cam, R_gl, t_gl, matrix_world)
         state.update(R_axes=R_axes, frame=v["frame"], camera=cam, matrix_world=matrix_world)
 
-    return build_demo(
+    demo = build_demo(
         "opencv_vs_opengl",
         controls,
         view,
@@ -858,6 +879,24 @@ def opencv_vs_opengl():
         title="Same camera, two axis conventions",
         extra=[title],
     )
+    # the browser draws the moves (projective_camera.js); the kernel keeps the matrices and state
+    world = dict(
+        house=house_segments,
+        eye=EYE_GL,
+        target=GL_TARGET,
+        camera=art.camera,
+        elev=VIEW_GL_ELEV,
+        azim0=VIEW_GL_AZIM0,
+        follow=VIEW_GL_FOLLOW,
+        fill=GL_FILL,
+        axis=GL_AXIS_M,
+        label=GL_LABEL_M,
+        tips=GL_TIPS_M,
+        names=GL_NAMES,
+    )
+    parts = dict(world=world_axes, house=house, camera=art, lines=lines, texts=texts)
+    view.publish(demo, opencv_vs_opengl_scene(view, ax, parts, world))
+    return demo
 
 
 def _opengl_text(gl, cam, R_gl, t_gl, matrix_world):
@@ -917,6 +956,8 @@ def _opengl_figure(view):
         The camera.
     lines, texts : list
         The camera's three axes and their labels, in the order x, y, z.
+    world, house
+        The world axes' artists (:func:`~camlab.plotting.wireframes.draw_world_axes`) and the house's line.
     """
     from mpl_toolkits.mplot3d import Axes3D  # noqa: F401  (registers the 3-D projection)
 
@@ -928,7 +969,7 @@ def _opengl_figure(view):
     world = scene3d.draw_world_axes(ax, 0.6)
     house_segments = scenes.house_wireframe((0.0, 0.0, 0.0), 0.6)
     house = scene3d.draw_segments(ax, house_segments, color=palette.GREY)
-    cam0 = cm.Camera.look_at(EYE_GL, [0.0, 0.0, 0.4])
+    cam0 = cm.Camera.look_at(EYE_GL, GL_TARGET)
     art = scene3d.CameraArtist(
         ax, cam0, size=0.5, show_axes=False
     )  # about half the axes' length, so "z forward" clears the frustum's far edge
@@ -940,4 +981,4 @@ def _opengl_figure(view):
     # The limits follow the orbiting camera (house, axes and labels fill the canvas at every angle), so
     # everything in the 3-D axes moves with the projection and is animated.
     view.animate(*world, house, *art.artists(), *lines, *texts)
-    return ax, house_segments, art, lines, texts
+    return ax, house_segments, art, lines, texts, (world, house)

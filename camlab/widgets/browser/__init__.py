@@ -33,6 +33,7 @@ import ipywidgets as W
 import numpy as np
 import traitlets
 from matplotlib.colors import to_hex
+from matplotlib.font_manager import weight_dict
 
 from .._base import Demo, FigureView, display_mode
 
@@ -51,6 +52,7 @@ __all__ = [
 
 MODULES = (
     "geometry.js",
+    "view3d.js",
     "drawing.js",
     "stack_check.js",
     "similar_triangles.js",
@@ -65,6 +67,7 @@ MODULES = (
     "pinhole.js",
     "corners.js",
     "drag.js",
+    "projective_camera.js",
     "widget.js",
 )
 """The ES modules, in dependency order, joined into the one module anywidget loads."""
@@ -399,8 +402,10 @@ def text_style(text: Any, **extra: Any) -> dict:
     px = text.get_fontsize() * fig.dpi / 72.0
     name = text.get_fontproperties().get_name()  # the font matplotlib found: DejaVu Sans (Mono)
     generic = "monospace" if "Mono" in name else "sans-serif"
+    weight = text.get_fontweight()  # a number or a name ("bold"): CSS takes the number
+    weight = weight if isinstance(weight, int) else weight_dict[weight]
     return dict(
-        font=f"{px:.3f}px '{name}', {generic}",
+        font=f"{weight} {px:.3f}px '{name}', {generic}",
         color=to_hex(text.get_color()),
         ascent=float(h - d),
         descent=float(d),

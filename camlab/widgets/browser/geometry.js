@@ -231,11 +231,11 @@ export function ratiosTitle(f, Z, Y) {
 
 // ---- lesson 05: the dolly zoom camera and its affine approximations ----------------------------
 
-function dot3(a, b) {
+export function dot3(a, b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-function unit(v) {
+export function unit(v) {
   const n = Math.hypot(v[0], v[1], v[2]);
   return v.map((c) => c / n);
 }

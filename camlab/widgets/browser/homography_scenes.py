@@ -21,6 +21,7 @@ from .scenes import plane_panel, spine_lines
 __all__ = [
     "drag_scene",
     "forward_inverse_scene",
+    "halo_style",
     "haloed_marker_style",
     "haloed_line_style",
     "hierarchy_scene",
@@ -58,7 +59,7 @@ def haloed_line_style(line: Any, px_per_point: float) -> dict:
     )
 
 
-def _halo(artist: Any, px_per_point: float) -> dict:
+def halo_style(artist: Any, px_per_point: float) -> dict:
     """An artist's ``palette.halo`` (its one ``withStroke``) as ``halo`` (colour) and ``haloWidth`` (px)."""
     stroke = artist.get_path_effects()[0]._gc  # noqa: SLF001 - withStroke keeps its linewidth and foreground here
     return dict(
@@ -88,7 +89,7 @@ def haloed_marker_style(line: Any, px_per_point: float) -> dict:
         marker_style(line, px_per_point),
         color=to_hex(face, keep_alpha=True),
         hollow=hollow,
-        **_halo(line, px_per_point),
+        **halo_style(line, px_per_point),
     )
 
 
@@ -410,7 +411,7 @@ def drag_scene(
             mappedDots=marker_style(art.mapped_dots, pt),
             handles=haloed_marker_style(art.handles, pt),
             chosen=haloed_marker_style(art.chosen, pt),
-            names=dict(text_style(name), **_halo(name, pt)),
+            names=dict(text_style(name), **halo_style(name, pt)),
             numbers=dict(text_style(art.numbers), **text_lines(art.numbers)),
             warning=warning,
         ),

@@ -9,6 +9,7 @@ import { drawHierarchy } from "./hierarchy.js";
 import { drawForwardInverse } from "./forward_inverse.js";
 import { dragCorners, drawDrag } from "./drag.js";
 import { drawPinhole } from "./pinhole.js";
+import { drawCameraExplorer, drawOpencvVsOpengl } from "./projective_camera.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
@@ -30,6 +31,8 @@ const SCENES = {
   transformation_hierarchy: { draw: drawHierarchy },
   forward_vs_inverse: { draw: drawForwardInverse },
   drag_homography: { draw: drawDrag, drag: dragCorners },
+  camera_explorer: { draw: drawCameraExplorer },
+  opencv_vs_opengl: { draw: drawOpencvVsOpengl },
 };
 
 // The parameters' values by name, a choice's as its chosen option.
