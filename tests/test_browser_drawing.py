@@ -188,13 +188,7 @@ def slider_values(page, name: str) -> dict:
     return dict(zip(sliders, values, strict=True))
 
 
-# drag_homography's sliders write its corners text in the kernel (one writer: a second one in the
-# browser raced the kernel's copy and lost key presses), so a keydown there pays a kernel round
-# trip; its drags and typed corners are drawn in the browser (the tests further down).
-KEYS_VIA_THE_KERNEL = {"drag_homography"}
-
-
-@pytest.mark.parametrize("name", sorted(set(BROWSER_DEMOS) - KEYS_VIA_THE_KERNEL))
+@pytest.mark.parametrize("name", sorted(BROWSER_DEMOS))
 def test_a_browser_drawn_demo_answers_a_keydown_within_50_ms_as_matplotlib_draws_it(lab_page, name):
     page = lab_page
     canvas = _shown(page, name)

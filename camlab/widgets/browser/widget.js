@@ -7,13 +7,15 @@ import { drawDollyZoom } from "./dolly_zoom.js";
 import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
 import { drawHierarchy } from "./hierarchy.js";
 import { drawForwardInverse } from "./forward_inverse.js";
-import { dragCorners, drawDrag } from "./drag.js";
+import { dragCorners, drawDrag, followDrag } from "./drag.js";
 import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
 // `drag(scene, [u, v], values, type)`, where a demo takes the mouse, turns a press ("pointerdown") or
 // drag at figure pixel (u, v) into the parameters to set (or null): set on the canvas, they reach the
-// sliders by their links.
+// sliders by their links. `follow(scene, name, values)`, where controls write one another in the
+// browser (drag_homography's corner sliders and corners text), gives the parameters to set when
+// `name` changed.
 const SCENES = {
   stack_check: { draw: drawStackCheck },
   similar_triangles: { draw: drawSimilarTriangles, drag: dragSimilarTriangles },
@@ -27,7 +29,7 @@ const SCENES = {
   epipolar_lines: { draw: drawEpipolarLines, drag: dragEpipolarLines },
   transformation_hierarchy: { draw: drawHierarchy },
   forward_vs_inverse: { draw: drawForwardInverse },
-  drag_homography: { draw: drawDrag, drag: dragCorners },
+  drag_homography: { draw: drawDrag, drag: dragCorners, follow: followDrag },
 };
 
 // The parameters' values by name, a choice's as its chosen option.
@@ -100,7 +102,16 @@ function render({ model, el }) {
     };
     background.src = scene.background;
     for (const name of scene.params.filter((n) => !listening.has(n))) {
-      model.on(`change:${name}`, draw);
+      model.on(`change:${name}`, () => {
+        const follow = SCENES[model.get("scene").kind].follow;
+        if (!follow) return draw();
+        // after the link that set `name` is done: a link is deaf while it sets, so a value set
+        // back within it (a slider stopped short) would not reach its control
+        queueMicrotask(() => {
+          const now = model.get("scene");
+          if (!setValues(model, follow(now, name, valuesOf(model, now)))) draw(); // else drawn on its change
+        });
+      });
       listening.add(name);
     }
   };
