@@ -29,6 +29,7 @@ BROWSER_DEMOS = {
     "similar_triangles": "camera obscura",
     "three_cameras": "orthographic",
     "dolly_zoom": "zooming",
+    "lift_to_plane": "homogeneous",
     "point_line_duality": "incidence",
     "parallel_lines": "infinity",
     "cross_ratio_invariance": "cross-ratio",
@@ -53,7 +54,7 @@ def css(name: str) -> str:
     return "camlab-demo-" + name.replace("_", "-")
 
 
-def drawn_as_matplotlib_draws_it(name: str, live: np.ndarray, values: dict) -> float:
+def drawn_as_matplotlib_draws_it(name: str, live: np.ndarray, values: dict, demo=None) -> float:
     """The share of matplotlib's moving pixels (its text apart) the browser drew in the same colour.
 
     The headless demo (tests/conftest.py) at ``values`` is the numpy + matplotlib twin. Its moving
@@ -69,7 +70,7 @@ def drawn_as_matplotlib_draws_it(name: str, live: np.ndarray, values: dict) -> f
 
     from camlab.widgets import all_demos
 
-    demo = all_demos()[name].builder()
+    demo = demo or all_demos()[name].builder()  # given: a headless demo turned as the live one
     demo.set(**values)
     ref = demo.view.pixels()[..., :3].astype(float)
     static = np.asarray(demo.view._background)[..., :3].astype(float)
@@ -403,3 +404,63 @@ def test_typed_corners_of_a_bow_tie_tear_the_drag_homography_canvas_as_matplotli
     assert 0 < changed.mean() < 0.05, (
         f"{changed.mean():.1%} of the canvas changed: only the note should"
     )
+
+
+def test_a_drag_on_the_lift_to_plane_3d_box_turns_it_in_the_kernel_as_ipympl_does(lab_page):
+    """lift_to_plane's 3-D box turns under the mouse as under ipympl: the browser sends the press, the
+    moves and the release to the kernel, where mplot3d turns the box, and the scene comes back. The
+    canvas then draws what matplotlib draws at that view, and a keydown is still drawn in the browser."""
+    from matplotlib.backend_bases import MouseButton, MouseEvent
+
+    from camlab.widgets import all_demos
+    from camlab.widgets.browser import axes_box, canvas_height
+
+    page = lab_page
+    name = "lift_to_plane"
+    canvas = _shown(page, name)
+    scale, left, top = page.evaluate(
+        "(s) => { const c = document.querySelector(s); const r = c.getBoundingClientRect();"
+        " return [r.width / c.width * (window.devicePixelRatio || 1), r.left, r.top]; }",
+        f".{css(name)} {CANVAS}",
+    )
+    demo = all_demos()[name].builder()
+    box = axes_box(demo.figure.axes[0])
+    start = (
+        round(left + (box["left"] + box["right"]) / 2 * scale),
+        round(top + (box["top"] + box["bottom"]) / 2 * scale),
+    )
+    end = (start[0] + 60, start[1] + 24)
+    before = canvas.screenshot()
+    page.mouse.move(*start)
+    page.mouse.down()
+    page.mouse.move(*end, steps=6)
+    page.mouse.up()
+    shot = canvas.screenshot()
+    for _ in range(60):  # the sharp scene after the release: the canvas stops changing
+        page.wait_for_timeout(500)
+        shot, last = canvas.screenshot(), shot
+        if shot == last and shot != before:
+            break
+    assert shot != before, "the drag did not turn the 3-D box"
+    # the same press, move and release, handed to the headless demo's matplotlib
+    height = canvas_height(demo.figure)
+    fig_canvas = demo.figure.canvas
+    for event, (cx, cy) in zip(
+        ("button_press_event", "motion_notify_event", "button_release_event"),
+        (start, end, end),
+        strict=True,
+    ):
+        x, y = (cx - left) / scale, height - (cy - top) / scale
+        button = None if event == "motion_notify_event" else MouseButton.LEFT
+        fig_canvas.callbacks.process(event, MouseEvent(event, fig_canvas, x, y, button=button))
+    ax3 = demo.figure.axes[0]
+    assert (ax3.azim, ax3.elev) != (-60, 16), "the headless drag did not turn the box"
+    values = slider_values(page, name)
+    width, h, data = page.evaluate(CANVAS_PIXELS, f".{css(name)} {CANVAS}")
+    live = np.array(data, dtype=np.uint8).reshape(h, width, 4)
+    snapshot(name + "_turned", live)
+    share = drawn_as_matplotlib_draws_it(name, live, values, demo=demo)
+    print(json.dumps({"demo": name, "turned": [ax3.azim, ax3.elev], "share": round(share, 4)}))
+    assert share >= 0.95, f"turned, the canvas matches matplotlib's on {share:.0%}"
+    samples = browser.key_to_pixels(page, css(name), CANVAS, presses=6)
+    assert all(s >= 0 for s in samples) and statistics.median(samples) <= 50, samples
