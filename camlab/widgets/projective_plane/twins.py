@@ -14,7 +14,7 @@ import numpy as np
 from ... import fixtures
 from ... import projective as pj
 from ...camera import rotation_z
-from ...plotting.plane import arrow_placement
+from ...plotting.plane import ArrowPlacement, arrow_placement
 
 __all__ = [
     "CONIC_TANGENTS",
@@ -540,7 +540,7 @@ class LiftView(NamedTuple):
     ends: np.ndarray
     scaled_shown: bool
     hit: np.ndarray | None
-    dot: object
+    dot: ArrowPlacement | None
     note: str
 
 
