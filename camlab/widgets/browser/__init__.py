@@ -390,20 +390,22 @@ class BrowserView(FigureView):
         for artist in shown:
             artist.set_visible(False)  # mplot3d's draw is then the background
         try:
-            canvas.callbacks.process(name, MouseEvent(name, canvas, x, y, button=button))
-            turned, quick = view() != before, None
-            if turned and name == "motion_notify_event":
-                if self.fig.stale:
-                    canvas.draw()
-                quick = _png(np.asarray(canvas.buffer_rgba()))
+            try:
+                canvas.callbacks.process(name, MouseEvent(name, canvas, x, y, button=button))
+                turned, quick = view() != before, None
+                if turned and name == "motion_notify_event":
+                    if self.fig.stale:
+                        canvas.draw()
+                    quick = _png(np.asarray(canvas.buffer_rgba()))
+            finally:
+                for artist in shown:
+                    artist.set_visible(True)
+            blurred = self.canvas.scene.get("backgroundScale") == 1
+            if turned or (name == "button_release_event" and blurred):
+                self._stale = True  # pixels() draws the figure at its new view
+                self.canvas.scene = self._scene(demo, scene, quick)
         finally:
-            for artist in shown:
-                artist.set_visible(True)
-        blurred = self.canvas.scene.get("backgroundScale") == 1
-        if turned or (name == "button_release_event" and blurred):
-            self._stale = True  # pixels() draws the figure at its new view
-            self.canvas.scene = self._scene(demo, scene, quick)
-        self.canvas.send({"turned": True})
+            self.canvas.send({"turned": True})  # even after an error: the browser sends on
 
 
 def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:
