@@ -15,9 +15,9 @@ from test_browser_geometry_parity import CASES, NODE, assert_twins, run_js
 
 from camlab import homography as hg
 from camlab._validate import DegenerateError
-from camlab.widgets.controls import format_corners, parse_corners
+from camlab.widgets.controls import convex_clamp, convex_margin, format_corners, parse_corners
 from camlab.widgets.homographies.corner_twins import drag_measures
-from camlab.widgets.homographies.geometry import SQUARE
+from camlab.widgets.homographies.geometry import SLIDER_MARGIN_PX, SQUARE
 
 CORNERS = Path(__file__).resolve().parent.parent / "camlab" / "widgets" / "browser" / "corners.js"
 
@@ -72,6 +72,26 @@ def test_the_corners_text_reads_and_writes_as_the_controls_do():
         else:
             assert_twins(js["corners"], py["corners"], f"parseCorners({text!r})")
     assert sum("error" in _parsed(t) for t in texts) >= 6, "not every kind of slip was tried"
+
+
+def test_the_convex_clamp_stops_a_slider_as_the_kernel_does():
+    rng = np.random.default_rng(82)
+    clamp = convex_clamp(SLIDER_MARGIN_PX)
+    cases = [
+        (p, int(rng.integers(4)), np.round(rng.uniform([0, 0], [299, 259]))) for p in _corners(rng)
+    ]
+    calls = [("convexMargin", [p.tolist()]) for p, _, _ in cases]
+    calls += [("convexClamp", [SLIDER_MARGIN_PX, p.tolist(), k, w.tolist()]) for p, k, w in cases]
+    out = run_js(calls, CORNERS)
+    n = len(cases)
+    stopped = 0
+    for js_margin, js_clamp, (p, k, w) in zip(out[:n], out[n:], cases, strict=True):
+        margin = convex_margin(p)
+        assert js_margin == margin or abs(js_margin - margin) <= 1e-9 * abs(margin)
+        py = clamp(p, k, w)
+        assert np.array_equal(js_clamp, py), (p, k, w, js_clamp, py)
+        stopped += not np.array_equal(py, w)
+    assert stopped >= 5, f"only {stopped} slider moves were stopped short of a dent"
 
 
 def test_four_corners_give_estimate_homographys_h_and_its_errors():
@@ -164,14 +184,27 @@ def test_the_drag_view_equals_the_demos():
     print(f"dragView: worst relative error {worst:.2e}")
 
 
-def test_the_note_and_the_table_are_written_as_the_kernel_writes_them():
-    """The error note wrapped as textwrap wraps it, and the table's text."""
+def test_a_corner_slider_writes_the_corners_as_the_kernel_does():
+    """cornerSlid: the corners text a slider move gives (the kernel's corner_keys with convex_clamp),
+    and the text and table of the error note wrapped as textwrap wraps them."""
     import textwrap
 
+    from camlab.widgets.controls import corner_keys, corner_text
     from camlab.widgets.homographies.corner_twins import drag_table_text, drag_view
 
     rng = np.random.default_rng(86)
-    calls = []
+    control = corner_text(format_corners(SQUARE), "corners")
+    keys = corner_keys(control, "abcd", 299, 259, clamp=convex_clamp(SLIDER_MARGIN_PX))
+    calls, expected = [], []
+    for p in _corners(rng)[:60]:
+        k, name = int(rng.integers(4)), ("corner_u", "corner_v")[int(rng.integers(2))]
+        value = float(np.round(rng.uniform(0, 259)))
+        control.value = format_corners(p)
+        keys["corner"].value = k
+        before = control.value
+        keys[name].value = value
+        calls.append(("cornerSlid", [before, k, name, value, SLIDER_MARGIN_PX]))
+        expected.append(None if control.value == before else control.value)
     messages = [
         drag_view({"corners": t}, _drag_fixed()).error
         for t in ("1, 2; 3", "0, 0; 100, 100; 200, 200; 9, 9")
@@ -184,6 +217,43 @@ def test_the_note_and_the_table_are_written_as_the_kernel_writes_them():
     ]
     calls += [("dragTableText", [r]) for r in rows]
     out = run_js(calls, CORNERS)
-    m = len(messages)
-    assert out[:m] == [textwrap.wrap(msg, 55) for msg in messages]
-    assert out[m:] == [drag_table_text(r) for r in rows]
+    n, m = len(expected), len(messages)
+    assert out[:n] == expected
+    assert sum(e is not None for e in expected) >= 30
+    assert out[n : n + m] == [textwrap.wrap(msg, 55) for msg in messages]
+    assert out[n + m :] == [drag_table_text(r) for r in rows]
+
+
+def test_the_browser_keeps_the_corner_controls_in_step_as_the_kernel_does():
+    """followDrag (drag.js; the kernel's sync is off when the browser draws the demo): after a slider
+    move, a new text or another corner picked, the text and the two sliders equal corner_keys'."""
+    from camlab.widgets.controls import corner_keys, corner_text
+
+    drag = CORNERS.with_name("drag.js")
+    rng = np.random.default_rng(87)
+    control = corner_text(format_corners(SQUARE), "corners")
+    keys = corner_keys(control, "abcd", 299, 259, clamp=convex_clamp(SLIDER_MARGIN_PX))
+    u, v, pick = keys["corner_u"], keys["corner_v"], keys["corner"]
+    scene = {"margin": SLIDER_MARGIN_PX}
+    calls, expected = [], []
+    corners = _corners(rng)
+    for i, p in enumerate(corners[:90]):
+        control.value = format_corners(p)
+        pick.value = int(rng.integers(4))
+        before = dict(corners=control.value, corner=pick.value, corner_u=u.value, corner_v=v.value)
+        kind = ("corner_u", "corner_v", "corners", "corner")[i % 4]
+        new = {
+            "corners": format_corners(corners[i + 1]),
+            "corner": (pick.value + 1 + int(rng.integers(3))) % 4,
+        }.get(kind, float(np.round(rng.uniform(0, 259))))
+        moved = dict(before, **{kind: new})  # what the browser has when the control moved
+        keys.get(kind, control).value = new  # the kernel's sync (a stopped slider snaps back)
+        calls.append(("followDrag", [scene, kind, moved]))
+        expected.append((moved, dict(corners=control.value, corner_u=u.value, corner_v=v.value)))
+    out = run_js(calls, drag)
+    changed = 0
+    for js, (moved, kernel) in zip(out, expected, strict=True):
+        after = dict(moved, **(js or {}))
+        assert {k: after[k] for k in kernel} == kernel, (moved, js, kernel)
+        changed += js is not None
+    assert changed >= 60, f"only {changed} of {len(out)} changes moved another control"

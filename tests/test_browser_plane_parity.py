@@ -350,3 +350,76 @@ def test_the_conic_arithmetic_and_caption_equal_the_demo():
     wrong = [(v, e) for v, e in zip(values, exps, strict=True) if e != f"{v:.0e}"]
     assert not wrong, f"JS and Python format .0e differently: {wrong[:5]}"
     print(f"conic_under_homography: worst relative error {worst:.2e}")
+
+
+def test_the_lift_to_plane_arithmetic_equals_the_demo():
+    """liftView: the ray's ends in the 3-D box, λ(x, y, w), the meet with w = 1, the plane's dot (an
+    arrow when off the view or ideal) and the note, at the sliders' steps and their edge cases."""
+    from camlab.widgets.projective_plane import lift_to_plane
+
+    rng = np.random.default_rng(66)
+    xlim, ylim = [-2.0, 2.0], [-2.0, 2.0]
+    box, w_max = 3.0, 2.0
+    rays = [*np.round(rng.uniform([-1.5, -1.5, 0.0], [1.5, 1.5, 1.0], (CASES, 3)) / 0.05) * 0.05]
+    rays += [*rng.uniform([-1.5, -1.5, 0.0], [1.5, 1.5, 1.0], (CASES, 3))]
+    # ideal (w = 0), w = 0 on an axis, the zero vector, a point on the plane's edge, one off it
+    rays += [[1.0, 0.5, 0.0], [0.0, -1.5, 0.0], [0.0, 0.0, 0.0], [1.0, 0.5, 0.5], [1.5, 0.1, 0.1]]
+    scales = [*np.round(rng.uniform(-2, 2, len(rays)) / 0.05) * 0.05]
+    scales[:3] = [0.0, -0.0, 2.0]
+    args = [
+        [list(map(float, r)), float(s), box, w_max, xlim, ylim]
+        for r, s in zip(rays, scales, strict=True)
+    ]
+    out = run_js([("liftView", [*a, list(twins.LIFT_NOTES)]) for a in args])
+    worst, arrows, notes = 0.0, 0, set()
+    for js, a in zip(out, args, strict=True):
+        py = twins.lift_view(np.array(a[0]), *a[1:])
+        for key, value in (("pointH", py.point_h), ("ends", py.ends)):
+            worst = max(worst, assert_twins(js[key], value, f"liftView {key} {a}"))
+        for key, value in (("point", py.point), ("hit", py.hit)):
+            assert (js[key] is None) == (value is None), (key, a, js[key], value)
+            if value is not None:
+                worst = max(worst, assert_twins(js[key], value, f"liftView {key} {a}"))
+        assert (js["dot"] is None) == (py.dot is None), a
+        if py.dot is not None:
+            worst = max(worst, assert_twins(js["dot"]["position"], py.dot.position, "dot"))
+            assert_twins(js["dot"]["direction"], py.dot.direction, "dot direction")
+            arrows += bool(py.dot.direction.any())
+        assert js["scaledShown"] == py.scaled_shown and js["note"] == py.note, (a, js, py)
+        notes.add(py.note)
+    assert notes == {"", *twins.LIFT_NOTES}, "not every note was reached"
+    assert arrows >= 10, f"only {arrows} arrows"
+    # and the demo's update is the twin: its state and artists at a few settings
+    demo = lift_to_plane()
+    for a in args[-5:]:
+        demo.set(x=a[0][0], y=a[0][1], w=a[0][2], scale=a[1])
+        py = twins.lift_view(np.array(a[0]), *a[1:])
+        assert np.array_equal(demo.state["point_h"], py.point_h)
+        assert np.array_equal(np.array(demo.figure.axes[0].lines[0].get_data_3d()).T, py.ends)
+    print(f"liftView: worst relative error {worst:.2e}")
+
+
+def test_a_3d_panel_maps_points_to_the_pixels_mplot3d_draws_them_at():
+    """space_panel's 3 x 4 map (projectSpace, twin space_pixels) puts lift_to_plane's 3-D lines where
+    matplotlib's Agg canvas draws them, at the default and at another setting."""
+    from camlab.widgets.browser import canvas_height
+    from camlab.widgets.browser.plane_scenes import space_panel, space_pixels
+    from camlab.widgets.projective_plane import lift_to_plane
+
+    rng = np.random.default_rng(67)
+    demo = lift_to_plane()
+    ax3 = demo.figure.axes[0]
+    P = space_panel(ax3)["toPixels"]
+    points = rng.uniform([-3.3, -3.3, -2.2], [3.3, 3.3, 2.2], (CASES, 3))
+    (js,) = run_js([("projectSpace", [P, points.tolist()])])
+    worst = assert_twins(js, space_pixels(P, points), "projectSpace")
+    height = canvas_height(demo.figure)
+    for setting in ({}, {"x": -1.2, "y": 0.7, "w": 0.4, "scale": -0.6}):
+        demo.set(**setting)
+        demo.view.pixels()  # drawn: mplot3d has projected the lines
+        for line in ax3.lines:
+            drawn = line.get_transform().transform(line.get_xydata())
+            drawn[:, 1] = height - drawn[:, 1]
+            mine = space_pixels(P, np.column_stack(line.get_data_3d()))
+            assert np.abs(drawn - mine).max() < 1e-9, (line.get_label(), drawn, mine)
+    print(f"projectSpace: worst relative error {worst:.2e}")

@@ -260,3 +260,52 @@ def test_opencv_vs_opengl_links_its_orbit_and_frame_and_draws_as_headless(in_a_k
     headless.set(orbit=-70, frame="OpenGL / Blender")
     assert np.array_equal(live, headless.view.pixels())
     assert np.array_equal(demo.state["matrix_world"], headless.state["matrix_world"])
+
+
+def test_a_drag_sent_from_the_browser_turns_lift_to_plane_as_matplotlib_turns_it(
+    in_a_kernel, monkeypatch
+):
+    """The browser cannot redraw a 3-D box: it sends a press, moves and the release on it (the scene's
+    ``turn`` boxes) to the kernel. There mplot3d turns it as a headless drag does; each move sends
+    the scene again, with the new 3-D map and a background at the figure's size (the release: sharp),
+    answers ``turned``, and the kernel's pixels equal the headless drawing at that view."""
+    from matplotlib.backend_bases import MouseButton, MouseEvent
+
+    from camlab.widgets.browser import axes_box, canvas_height
+    from camlab.widgets.projective_plane import lift_to_plane
+
+    demo = lift_to_plane()
+    view, canvas = demo.view, demo.view.canvas
+    box = axes_box(demo.figure.axes[0])
+    assert canvas.scene["turn"] == [box]
+    answers = []
+    monkeypatch.setattr(canvas, "send", lambda content, buffers=None: answers.append(content))
+    u, v = (box["left"] + box["right"]) / 2, (box["top"] + box["bottom"]) / 2
+    path = [("pointerdown", u, v), ("pointermove", u + 30, v + 10), ("pointermove", u + 60, v + 20)]
+    path.append(("pointerup", u + 60, v + 20))
+    maps, scales = [canvas.scene["space"]["toPixels"]], []
+    for kind, x, y in path:
+        canvas._handle_custom_msg({"type": kind, "u": x, "v": y, "button": 1}, [])
+        maps.append(canvas.scene["space"]["toPixels"])
+        scales.append(canvas.scene["backgroundScale"])
+    assert answers == [{"turned": True}] * 4
+    assert maps[1] == maps[0] and maps[2] != maps[1] and maps[3] != maps[2] and maps[4] == maps[3]
+    assert scales == [BACKGROUND_SCALE, 1, 1, BACKGROUND_SCALE]
+    monkeypatch.setenv("CAMLAB_FIGURE_MODE", "agg")
+    headless = lift_to_plane()
+    fig_canvas, height = headless.figure.canvas, canvas_height(headless.figure)
+    for event, x, y in (
+        ("button_press_event", u, v),
+        ("motion_notify_event", u + 60, v + 20),
+        ("button_release_event", u + 60, v + 20),
+    ):
+        button = None if event == "motion_notify_event" else MouseButton.LEFT
+        fig_canvas.callbacks.process(
+            event, MouseEvent(event, fig_canvas, x, height - y, button=button)
+        )
+    turned, ax3 = demo.figure.axes[0], headless.figure.axes[0]
+    assert np.allclose([turned.azim, turned.elev], [ax3.azim, ax3.elev])
+    assert (ax3.azim, ax3.elev) != (-60, 16)
+    demo.set(x=-1.2, w=0.4)
+    headless.set(x=-1.2, w=0.4)
+    assert np.abs(view.pixels().astype(int) - headless.view.pixels()).max() <= 1

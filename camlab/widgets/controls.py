@@ -280,6 +280,7 @@ def corner_keys(
     u_max: float,
     v_max: float,
     clamp: Callable[[np.ndarray, int, np.ndarray], np.ndarray] | None = None,
+    browser_syncs: bool = False,
 ) -> dict[str, W.ValueWidget]:
     """Keyboard twins of dragging a corner: a dropdown picks the corner, two sliders move it.
 
@@ -302,6 +303,13 @@ def corner_keys(
         ``clamp(corners, index, wanted) -> (u, v)``: where a slider may put corner ``index``
         when it asks for ``wanted`` (e.g. :func:`convex_clamp`); the sliders then snap to it.
         None (default) puts it where asked.
+    browser_syncs : bool, optional
+        True when the browser keeps the text and the sliders in step itself (a demo drawn in the
+        browser, :class:`~camlab.widgets.browser.BrowserView`; its twin of this function is
+        ``followDrag`` in ``drag.js``): the kernel then only sets the sliders to the first corner
+        and writes neither the text nor the sliders afterwards. Two writers raced: the kernel's
+        copy of a slider or of the text, sent back while the browser was already a key press
+        further, undid that press (6 PageUp moved a corner 10-25 px of 30 in the lecture mode).
 
     Returns
     -------
@@ -342,6 +350,10 @@ def corner_keys(
         if control.value == before or not np.allclose(pts[pick.value], wanted):
             show_corner()  # clamped: the sliders show where the corner stays
 
+    keys = {"corner": pick, "corner_u": u, "corner_v": v}
+    show_corner()
+    if browser_syncs:
+        return keys  # kept in step in the browser from here on (drag.js's followDrag)
     for widget, handler in (
         (control, show_corner),
         (pick, show_corner),
@@ -349,8 +361,7 @@ def corner_keys(
         (v, write_corner),
     ):
         widget.observe(handler, names="value")
-    show_corner()
-    return {"corner": pick, "corner_u": u, "corner_v": v}
+    return keys
 
 
 def _cross2(a: np.ndarray, b: np.ndarray) -> float:

@@ -24,7 +24,7 @@ from __future__ import annotations
 import base64
 import io
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from importlib import resources
 from typing import Any
 
@@ -32,6 +32,7 @@ import anywidget
 import ipywidgets as W
 import numpy as np
 import traitlets
+from matplotlib.backend_bases import MouseButton, MouseEvent
 from matplotlib.colors import to_hex
 from matplotlib.font_manager import weight_dict
 
@@ -39,6 +40,7 @@ from .._base import Demo, FigureView, display_mode
 
 __all__ = [
     "BrowserView",
+    "axes_box",
     "browser_drawing",
     "canvas_class",
     "canvas_height",
@@ -195,6 +197,29 @@ def to_canvas_pixels(ax: Any) -> list[list[float]]:
     return (flip @ ax.transData.get_affine().get_matrix()).tolist()
 
 
+def axes_box(ax: Any) -> dict:
+    """The axes' box in canvas pixels (what matplotlib clips its lines and markers to).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        The axes, after the figure's layout is fixed.
+
+    Returns
+    -------
+    dict
+        ``left``, ``right``, ``top`` and ``bottom``, px from the canvas's top left.
+    """
+    box = ax.get_window_extent()
+    height = canvas_height(ax.figure)
+    return dict(
+        left=float(box.x0),
+        right=float(box.x1),
+        top=float(height - box.y1),
+        bottom=float(height - box.y0),
+    )
+
+
 BACKGROUND_SCALE = 2
 """The static background is sent at twice the figure's pixels, sharp on screens of device pixel ratio up to 2."""
 
@@ -215,6 +240,15 @@ def _background_png(view: FigureView, scale: int = BACKGROUND_SCALE) -> str:
         for artist in shown:
             artist.set_visible(True)
         view.fig.canvas.draw()
+    return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
+
+
+def _png(rgba: np.ndarray) -> str:
+    """An RGBA image as a PNG data URL, compressed little (sent while a 3-D axes turns)."""
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.fromarray(rgba).save(buf, format="png", compress_level=1)
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
@@ -277,33 +311,24 @@ class BrowserView(FigureView):
             self._stale = False
         return super().pixels()
 
-    def publish(self, demo: Demo, scene: Mapping[str, Any]) -> None:
+    def publish(
+        self, demo: Demo, scene: Mapping[str, Any] | Callable[[], Mapping[str, Any]]
+    ) -> None:
         """Send the scene once and link each parameter's slider to the canvas, in the browser.
 
         Parameters
         ----------
         demo : Demo
             The built demo (its first update has drawn the figure, so the layout is fixed).
-        scene : mapping
+        scene : mapping or callable
             What the scene's drawer in ``drawing.js`` needs; ``kind``, ``params``, the size and
-            the background are added here.
+            the background are added here. A callable giving it, for a figure with 3-D axes: a
+            drag on such axes in the browser turns them in the kernel (:meth:`_turn`), and the
+            scene is built again.
         """
         if self.canvas is None:
             return
-        fig = self.fig
-        width, height = fig.canvas.get_width_height(physical=True)  # Agg's buffer
-        self.canvas.scene = dict(
-            scene,
-            kind=demo.name,
-            params=list(self.params),
-            width=width,
-            height=height,
-            pxPerPoint=fig.dpi / 72.0,
-            background=_background_png(self),
-            backgroundScale=BACKGROUND_SCALE,
-            # a choice's options by index: widget.js gives the drawer the chosen option itself
-            choices={name: _option_values(demo.controls[name]) for name in self.choices},
-        )
+        self.canvas.scene = self._scene(demo, scene)
         for name in self.params:
             control = demo.controls[name]
             trait = "index" if name in self.choices else "value"  # a choice syncs its index only
@@ -318,6 +343,84 @@ class BrowserView(FigureView):
 
         for control in demo.controls.values():
             control.observe(on_change, names="value")
+        if callable(scene):
+            self.canvas.on_msg(lambda _canvas, content, _buffers: self._turn(demo, scene, content))
+
+    def _scene(
+        self,
+        demo: Demo,
+        scene: Mapping[str, Any] | Callable[[], Mapping[str, Any]],
+        background: str | None = None,
+    ) -> dict:
+        """The scene with what every drawer needs: the kind, the parameters, the size, the background.
+
+        ``background``: a PNG data URL of the figure at its own size, without its moving artists
+        (a 3-D axes being turned); None draws it at :data:`BACKGROUND_SCALE`.
+        """
+        fig = self.fig
+        width, height = fig.canvas.get_width_height(physical=True)  # Agg's buffer
+        scale = 1 if background else BACKGROUND_SCALE
+        background = background or _background_png(self)  # drawn: a 3-D projection is current
+        turn = [axes_box(ax) for ax in fig.axes if ax.name == "3d"] if callable(scene) else []
+        return dict(
+            scene() if callable(scene) else scene,
+            kind=demo.name,
+            params=list(self.params),
+            width=width,
+            height=height,
+            pxPerPoint=fig.dpi / 72.0,
+            background=background,
+            backgroundScale=scale,
+            # a choice's options by index: widget.js gives the drawer the chosen option itself
+            choices={name: _option_values(demo.controls[name]) for name in self.choices},
+            turn=turn,  # the 3-D axes' boxes: a drag there is sent to the kernel (widget.js)
+        )
+
+    def _turn(self, demo: Demo, scene: Callable[[], Mapping[str, Any]], content: Any) -> None:
+        """A press, move or release on a 3-D axes in the browser, handed to matplotlib as ipympl would.
+
+        mplot3d turns (left button), pans (middle) or zooms (right) the axes and draws the
+        figure. While the button is held the scene is sent again with that draw as its
+        background (the moving artists hidden for it: a third of the time of a sharp one); the
+        release sends it sharp. The browser sends its next message once this one is answered
+        (``{"turned": True}``).
+        """
+        names = {
+            "pointerdown": "button_press_event",
+            "pointermove": "motion_notify_event",
+            "pointerup": "button_release_event",
+        }
+        name = names.get(content.get("type")) if isinstance(content, Mapping) else None
+        if name is None:
+            return
+        space = [ax for ax in self.fig.axes if ax.name == "3d"]
+
+        def view() -> list:
+            return [(ax.elev, ax.azim, ax.roll, *ax.get_w_lims()) for ax in space]
+
+        before, canvas = view(), self.fig.canvas
+        x, y = float(content["u"]), canvas_height(self.fig) - float(content["v"])
+        button = None if name == "motion_notify_event" else MouseButton(int(content["button"]))
+        shown = [a for a in self._animated if a.get_visible()]
+        for artist in shown:
+            artist.set_visible(False)  # mplot3d's draw is then the background
+        try:
+            try:
+                canvas.callbacks.process(name, MouseEvent(name, canvas, x, y, button=button))
+                turned, quick = view() != before, None
+                if turned and name == "motion_notify_event":
+                    if self.fig.stale:
+                        canvas.draw()
+                    quick = _png(np.asarray(canvas.buffer_rgba()))
+            finally:
+                for artist in shown:
+                    artist.set_visible(True)
+            blurred = self.canvas.scene.get("backgroundScale") == 1
+            if turned or (name == "button_release_event" and blurred):
+                self._stale = True  # pixels() draws the figure at its new view
+                self.canvas.scene = self._scene(demo, scene, quick)
+        finally:
+            self.canvas.send({"turned": True})  # even after an error: the browser sends on
 
 
 def line_style(line: Any, px_per_point: float, **extra: Any) -> dict:

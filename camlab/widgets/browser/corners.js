@@ -74,6 +74,50 @@ function cross2(a, b) {
   return a[0] * b[1] - a[1] * b[0];
 }
 
+// Twin: camlab.widgets.controls.convex_margin(corners): the least distance (px) of a corner from
+// the line of a side it is not on, positive inside: > 0 convex, <= 0 a dent or bow tie, -inf flat.
+export function convexMargin(q) {
+  const e = q.map((p, k) => [q[(k + 1) % 4][0] - p[0], q[(k + 1) % 4][1] - p[1]]);
+  let area = 0;
+  for (let k = 0; k < 4; k++) area += q[k][0] * q[(k + 1) % 4][1] - q[(k + 1) % 4][0] * q[k][1];
+  const lengths = e.map(([x, y]) => norm2(x, y));
+  if (area === 0 || !lengths.every((l) => l > 0)) return -Infinity;
+  let least = Infinity;
+  for (let k = 0; k < 4; k++) {
+    for (const j of [2, 3]) {
+      const r = q[(k + j) % 4];
+      least = Math.min(least, (Math.sign(area) * cross2(e[k], [r[0] - q[k][0], r[1] - q[k][1]])) / lengths[k]);
+    }
+  }
+  return least;
+}
+
+// Twin: numpy.round(x, 1): x * 10 rounded half to even, over 10.
+function round1(x) {
+  const y = x * 10, r = Math.round(y);
+  return (r - y === 0.5 && r % 2 !== 0 ? r - 1 : r) / 10;
+}
+
+// Twin: camlab.widgets.controls.convex_clamp(margin)(corners, index, wanted): from a convex outline
+// (margin at least `margin`) corner `index` moves toward `wanted` only as far as the outline stays
+// so (30 halvings, rounded to 0.1 px); from any other outline it goes where asked.
+export function convexClamp(margin, corners, index, wanted) {
+  const q = corners.map((p) => [...p]);
+  const start = [...q[index]];
+  const ok = (t) => {
+    q[index] = [start[0] + t * (wanted[0] - start[0]), start[1] + t * (wanted[1] - start[1])];
+    return convexMargin(q) >= margin;
+  };
+  if (!ok(0) || ok(1)) return [...wanted];
+  let low = 0, high = 1;
+  for (let i = 0; i < 30; i++) {
+    const mid = 0.5 * (low + high);
+    if (ok(mid)) low = mid;
+    else high = mid;
+  }
+  return [round1(start[0] + low * (wanted[0] - start[0])), round1(start[1] + low * (wanted[1] - start[1]))];
+}
+
 // Twin: camlab.projective.hartley_normalise(points): centroid to 0, mean distance sqrt(2).
 function hartley(p) {
   const n = p.length;
@@ -277,3 +321,16 @@ export function dragView(v, fixed) {
   };
 }
 
+// Twin: camlab.widgets.controls.corner_keys' write_corner: a corner slider moved to `value` moves the
+// chosen corner's u (or v), stopped short of a dent (convexClamp); the new corners text, or null when
+// it stays the same. Only the slider that moved is read, so a slider the kernel is still bringing
+// to a newly chosen corner moves nothing.
+export function cornerSlid(text, index, name, value, margin) {
+  const parsed = parseCorners(text);
+  if (parsed.error || !Number.isFinite(value)) return null;
+  const corners = parsed.corners;
+  const wanted = name === "corner_u" ? [value, corners[index][1]] : [corners[index][0], value];
+  corners[index] = convexClamp(margin, corners, index, wanted);
+  const out = formatCorners(corners);
+  return out === text ? null : out;
+}

@@ -1,4 +1,4 @@
-import { dragTableText, dragView, formatCorners, parseCorners, wrapText } from "./corners.js";
+import { cornerSlid, dragTableText, dragView, formatCorners, parseCorners, wrapText } from "./corners.js";
 import { inv3, mapPoints } from "./geometry.js";
 import { drawWarp } from "./hierarchy.js";
 import { inPanel } from "./projective_plane.js";
@@ -7,9 +7,9 @@ import { boxedText, dot, label, polyline, textLines } from "./drawing.js";
 // Lesson 07's drag_homography drawn in the browser: twin of
 // camlab.widgets.homographies.geometry.drag_homography's update (the arithmetic in
 // camlab.widgets.homographies.corner_twins.drag_view, its twin dragView in corners.js). The corners
-// are a text control: the mouse drags a corner here (dragCorners) and the text reaches the kernel
-// through its link; a corner slider writes it in the kernel (corner_keys: a second writer in the
-// browser raced the kernel's copy and lost key presses), and the kernel's readout follows. The picture is warped as transformation_hierarchy warps it (drawWarp).
+// are a text control, written here alone: by a corner slider (followDrag, the twin of corner_keys)
+// and by the mouse dragging a corner (dragCorners); the text reaches the kernel through its link, and
+// the kernel's readout follows. The picture is warped as transformation_hierarchy warps it (drawWarp).
 
 const LAST = new WeakMap(); // per scene: the last view that could be drawn (a wrong text keeps it)
 const GRABBED = new WeakMap(); // per scene: the corner a press picked (null: none)
@@ -53,6 +53,28 @@ export function drawDrag(ctx, scene, v) {
     if (shown) label(ctx, scene.names[i], [at[i][0] + dx * pt, at[i][1] - dy * pt], st.names, "center", "center");
   });
   return g;
+}
+
+// Twin: camlab.widgets.controls.corner_keys (its kernel side is off here, browser_syncs: one writer,
+// so no copy sent back from the kernel undoes a key press): a corner slider moved writes its corner
+// into the corners text (cornerSlid, stopped short of a dent); the text changed (typed, dragged) or
+// another corner picked, and after a stop, the sliders show the picked corner. The parameters to set
+// on the canvas (their links carry them to the text box and the sliders), or null.
+export function followDrag(scene, name, v) {
+  if (!["corners", "corner", "corner_u", "corner_v"].includes(name)) return null;
+  let text = v.corners;
+  if (name === "corner_u" || name === "corner_v") {
+    if (!Number.isFinite(v[name])) return null; // NaN from a slider: the kernel reports it
+    text = cornerSlid(text, v.corner, name, v[name], scene.margin) ?? text;
+  }
+  const parsed = parseCorners(text);
+  if (parsed.error) return null; // being typed: the sliders keep the last corner
+  const [u, w] = parsed.corners[v.corner];
+  const out = {};
+  if (text !== v.corners) out.corners = text;
+  if (u !== v.corner_u) out.corner_u = u;
+  if (w !== v.corner_v) out.corner_v = w;
+  return Object.keys(out).length ? out : null;
 }
 
 // A press within scene.radius px of a corner picks it; a move with the button held drags it to the

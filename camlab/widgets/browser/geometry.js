@@ -437,6 +437,39 @@ export function arrowPlacement(pointH, xlim, ylim, anchor = null) {
   return { position: [start[0] + s * dir[0], start[1] + s * dir[1]], direction: dir };
 }
 
+// Twin: camlab.widgets.browser.plane_scenes.space_pixels(P, points): 3-D points (x, y, z) in canvas
+// pixels under a 3-D panel's 3 x 4 map (mplot3d's projection, then the axes' transData).
+export function projectSpace(P, points) {
+  return points.map(([x, y, z]) => fromHomogeneous(P.map((r) => r[0] * x + r[1] * y + r[2] * z + r[3])));
+}
+
+// Twin: camlab.widgets.projective_plane.twins.lift_view(ray, scale, box, w_max, xlim, ylim), its
+// notes (twins.LIFT_NOTES) given: {pointH, point, ends, scaledShown, hit, dot, note}; point, hit and
+// dot are null where the twin's are None.
+export function liftView(ray, scale, box, wMax, xlim, ylim, notes) {
+  const [x, y, w] = ray;
+  const pointH = ray.map((c) => scale * c);
+  const ideal = Math.abs(w) < 1e-12;
+  const reach = Math.min(box / Math.max(Math.abs(x), Math.abs(y), 1e-12), wMax / Math.max(Math.abs(w), 1e-12));
+  const end = ray.map((c) => reach * c);
+  const onPlane = !ideal && Math.max(Math.abs(x / w), Math.abs(y / w)) <= box;
+  let dot = null, note = notes[2];
+  if (x !== 0 || y !== 0 || w !== 0) {
+    dot = arrowPlacement(ray, xlim, ylim);
+    const off = dot.direction[0] !== 0 || dot.direction[1] !== 0;
+    note = ideal ? notes[0] : off ? notes[1] : "";
+  }
+  return {
+    pointH,
+    point: ideal ? null : [x / w, y / w],
+    ends: [end.map((c) => -c), end],
+    scaledShown: Math.abs(scale) > 1e-12,
+    hit: onPlane ? [x / w, y / w, 1] : null,
+    dot,
+    note,
+  };
+}
+
 // Twin: Python's format(x, f"+.{digits}f"): the sign always shown (-0 keeps its minus).
 export function plusFixed(x, digits) {
   const r = formatFixed(x, digits);

@@ -371,7 +371,8 @@ def drag_scene(
         :func:`~camlab.widgets.homographies.corner_twins.drag_view`'s constants.
     notes : mapping
         ``torn`` (the note on a torn picture), ``longest`` (a note of as many lines as any the
-        demo shows) and ``radius`` (how near a press picks a corner, px).
+        demo shows), ``margin`` (the corner sliders' stop short of a dent, px) and ``radius``
+        (how near a press picks a corner, px).
 
     Returns
     -------
@@ -403,6 +404,7 @@ def drag_scene(
         },
         names=[label.get_text() for label in art.mapped_names],
         torn=notes["torn"],
+        margin=float(notes["margin"]),
         radius=float(notes["radius"]),
         styles=dict(
             away=line_style(art.sent_away, pt),

@@ -13,8 +13,8 @@ from typing import Any
 import numpy as np
 from matplotlib.colors import to_hex
 
-from . import line_style, marker_style, text_lines, text_style
-from .scenes import arrow_pointing_right, arrow_style, cross_marker_style, plane_panel
+from . import line_style, marker_style, text_lines, text_style, to_canvas_pixels
+from .scenes import arrow_pointing_right, arrow_style, axes_box, cross_marker_style, plane_panel
 
 __all__ = [
     "boxed_text_scene",
@@ -22,7 +22,9 @@ __all__ = [
     "conic_scene",
     "cross_ratio_scene",
     "duality_scene",
+    "lift_scene",
     "parallel_scene",
+    "space_panel",
     "plane_panel",
     "scatter_style",
     "text_scene",
@@ -292,5 +294,95 @@ def conic_scene(parts: Any) -> dict:
             centreConic=cross_marker_style(parts.centre_conic, pt),
             mapped=scatter_style(parts.mapped, pt),
             caption=text_scene(parts.text),
+        ),
+    )
+
+
+def space_panel(ax: Any) -> dict:
+    """A 3-D panel: its map from data (x, y, z) to canvas pixels, and its box (what lines are clipped to).
+
+    mplot3d draws a 3-D line by projecting its points with the axes' matrix ``M`` (set at each
+    draw: the view, the limits and the box's aspect), ``(M X)[:2] / (M X)[3]``, onto the axes'
+    2-D data coordinates, which its ``transData`` takes to the screen. Both are linear in the
+    homogeneous point, so one 3 x 4 matrix ``P`` gives the pixel ``(P X)[:2] / (P X)[2]``
+    (``geometry.js``'s ``projectSpace``; twin :func:`space_pixels`).
+
+    Parameters
+    ----------
+    ax : mpl_toolkits.mplot3d.Axes3D
+        The axes, drawn once at their final layout and view.
+
+    Returns
+    -------
+    dict
+        ``toPixels`` (the 3 x 4 map, rows) and ``box`` (px).
+    """
+    flat = np.asarray(to_canvas_pixels(ax))  # the axes' 2-D data coordinates to canvas pixels
+    return dict(toPixels=(flat @ ax.M[[0, 1, 3]]).tolist(), box=axes_box(ax))
+
+
+def space_pixels(P: Any, points: Any) -> np.ndarray:
+    """Points (x, y, z) in canvas pixels under a 3-D panel's map (:func:`space_panel`'s ``toPixels``).
+
+    Parameters
+    ----------
+    P : (3, 4) array_like
+        The panel's map.
+    points : (N, 3) array_like
+        Data points.
+
+    Returns
+    -------
+    (N, 2) ndarray
+        Their pixels (u right, v down).
+    """
+    X = np.column_stack([np.asarray(points, dtype=float).reshape(-1, 3), np.ones(len(points))])
+    h = X @ np.asarray(P, dtype=float).T
+    return h[:, :2] / h[:, 2:]
+
+
+def lift_scene(parts: Any, world: Mapping[str, Any]) -> dict:
+    """What ``projective_plane.js`` needs to draw ``lift_to_plane`` as matplotlib draws it.
+
+    Parameters
+    ----------
+    parts : namespace
+        The figure's parts (``_lift_figure``), drawn once: ``ax3`` (the 3-D box), ``ax2`` (the
+        plane w = 1) and the moving artists ``ray``, ``scaled``, ``hit`` (3-D lines), ``dot``
+        (a round marker, or an arrowhead at the edge) and ``note`` (a text on a box).
+    world : mapping
+        ``box`` and ``w_max`` (the 3-D box's half-extents in x, y and in w), ``arrow`` (the
+        arrowhead marker's closed path, pointing up), ``notes`` (the notes over the plane:
+        ``twins.LIFT_NOTES``) and ``longest`` (a note of as many lines as any the demo shows: its
+        lines' baselines are sent).
+
+    Returns
+    -------
+    dict
+        The scene (JSON); the arrowhead's vertices turned to point right (``drawing.js``'s ``marker``).
+    """
+    pt = parts.ax2.figure.dpi / 72.0
+    note = parts.note
+    shown = note.get_text()
+    note.set_text(
+        world["longest"]
+    )  # baseline-aligned: a shorter note's lines are this one's first ones
+    try:
+        note_style = boxed_text_scene(note)
+    finally:
+        note.set_text(shown)
+    return dict(
+        space=space_panel(parts.ax3),
+        plane=plane_panel(parts.ax2),
+        box=float(world["box"]),
+        wMax=float(world["w_max"]),
+        arrow=arrow_pointing_right(world["arrow"]),
+        notes=list(world["notes"]),
+        styles=dict(
+            ray=line_style(parts.ray, pt),
+            scaled=marker_style(parts.scaled, pt),
+            hit=marker_style(parts.hit, pt),
+            dot=marker_style(parts.dot, pt),
+            note=note_style,
         ),
     )

@@ -1,4 +1,4 @@
-import { arrowPlacement, clipLine, conicCaption, conicGeometry, conicPoints, crossRatioCaption, crossRatioHomography, drawnVanishingPoint, dualityCaption, horizonLine, horizonNote, labelOffset, lineAtAngle, mapPoints, meetOrNull, meetWCurve, normalLine, normalisePoint, polylineData, rolledView } from "./geometry.js";
+import { arrowPlacement, clipLine, conicCaption, conicGeometry, conicPoints, crossRatioCaption, crossRatioHomography, drawnVanishingPoint, dualityCaption, horizonLine, horizonNote, labelOffset, liftView, lineAtAngle, mapPoints, meetOrNull, meetWCurve, normalLine, normalisePoint, polylineData, projectSpace, rolledView } from "./geometry.js";
 // (one line: esm_source drops the lines that start with "import")
 // Lesson 06's demos drawn in the browser: each drawer is the twin of its demo's update in
 // camlab/widgets/projective_plane (the arithmetic in geometry.js, each function's numpy twin named there).
@@ -136,5 +136,31 @@ export function drawConic(ctx, scene, v) {
     for (const at of px(g.mapped)) dot(ctx, at, st.mapped);
   });
   textLines(ctx, conicCaption(g, v.h31, v.h32), st.caption);
+  return g;
+}
+
+// Twin: camlab.widgets.projective_plane.lift_to_plane's update: the ray through 0 in the 3-D box,
+// λ(x, y, w) on it (hidden at λ = 0) and its meet with w = 1 (left, projected as mplot3d projects
+// them); the point in the plane w = 1, an arrowhead at the edge when it is off the view or ideal,
+// and the note over it (right).
+export function drawLift(ctx, scene, v) {
+  const { space, plane, styles: st } = scene;
+  const g = liftView([v.x, v.y, v.w], v.scale, scene.box, scene.wMax, plane.xlim, plane.ylim, scene.notes);
+  ctx.save();
+  clipTo(ctx, space.box);
+  const px = (pts) => projectSpace(space.toPixels, pts);
+  polyline(ctx, px(g.ends), st.ray);
+  if (g.scaledShown) dot(ctx, px([g.pointH])[0], st.scaled);
+  if (g.hit) dot(ctx, px([g.hit])[0], st.hit);
+  ctx.restore();
+  if (g.dot) {
+    inPanel(ctx, plane, (px2) => {
+      const { position, direction } = g.dot;
+      const [at, ahead] = px2([position, [position[0] + direction[0], position[1] + direction[1]]]);
+      if (direction[0] === 0 && direction[1] === 0) dot(ctx, at, st.dot);
+      else marker(ctx, at, [ahead[0] - at[0], ahead[1] - at[1]], scene.arrow, st.dot);
+    });
+  }
+  if (g.note) boxedText(ctx, g.note, st.note);
   return g;
 }

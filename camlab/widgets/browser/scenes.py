@@ -15,7 +15,15 @@ import numpy as np
 from matplotlib.colors import to_hex, to_rgba
 
 from ...plotting import optics
-from . import canvas_height, line_style, marker_style, text_lines, text_style, to_canvas_pixels
+from . import (
+    axes_box,
+    canvas_height,
+    line_style,
+    marker_style,
+    text_lines,
+    text_style,
+    to_canvas_pixels,
+)
 
 __all__ = [
     "arrow_pointing_right",
@@ -150,29 +158,6 @@ def similar_triangles_scene(ax: Any, art: dict, controls: Mapping[str, Any]) -> 
             },
             title=dict(text_style(ax.title), **text_lines(ax.title)),
         ),
-    )
-
-
-def axes_box(ax: Any) -> dict:
-    """The axes' box in canvas pixels (what matplotlib clips its lines and markers to).
-
-    Parameters
-    ----------
-    ax : matplotlib.axes.Axes
-        The axes, after the figure's layout is fixed.
-
-    Returns
-    -------
-    dict
-        ``left``, ``right``, ``top`` and ``bottom``, px from the canvas's top left.
-    """
-    box = ax.get_window_extent()
-    height = canvas_height(ax.figure)
-    return dict(
-        left=float(box.x0),
-        right=float(box.x1),
-        top=float(height - box.y1),
-        bottom=float(height - box.y0),
     )
 
 

@@ -7,21 +7,24 @@ import { drawDollyZoom } from "./dolly_zoom.js";
 import { drawEpipolarLines, dragEpipolarLines } from "./epipolar.js";
 import { drawHierarchy } from "./hierarchy.js";
 import { drawForwardInverse } from "./forward_inverse.js";
-import { dragCorners, drawDrag } from "./drag.js";
+import { dragCorners, drawDrag, followDrag } from "./drag.js";
 import { drawPinhole } from "./pinhole.js";
 import { drawCameraExplorer, drawOpencvVsOpengl } from "./projective_camera.js";
-import { drawConic, drawCrossRatio, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
+import { drawConic, drawCrossRatio, drawLift, drawParallelLines, drawPointLineDuality, drawVanishingPoints } from "./projective_plane.js";
 
 // The scene drawers by demo name (the scene's "kind"); a new browser-drawn demo adds its own here.
 // `drag(scene, [u, v], values, type)`, where a demo takes the mouse, turns a press ("pointerdown") or
 // drag at figure pixel (u, v) into the parameters to set (or null): set on the canvas, they reach the
-// sliders by their links.
+// sliders by their links. `follow(scene, name, values)`, where controls write one another in the
+// browser (drag_homography's corner sliders and corners text), gives the parameters to set when
+// `name` changed.
 const SCENES = {
   stack_check: { draw: drawStackCheck },
   pinhole_projection: { draw: drawPinhole },
   similar_triangles: { draw: drawSimilarTriangles, drag: dragSimilarTriangles },
   three_cameras: { draw: drawThreeCameras },
   dolly_zoom: { draw: drawDollyZoom },
+  lift_to_plane: { draw: drawLift },
   point_line_duality: { draw: drawPointLineDuality },
   parallel_lines: { draw: drawParallelLines },
   cross_ratio_invariance: { draw: drawCrossRatio },
@@ -30,7 +33,7 @@ const SCENES = {
   epipolar_lines: { draw: drawEpipolarLines, drag: dragEpipolarLines },
   transformation_hierarchy: { draw: drawHierarchy },
   forward_vs_inverse: { draw: drawForwardInverse },
-  drag_homography: { draw: drawDrag, drag: dragCorners },
+  drag_homography: { draw: drawDrag, drag: dragCorners, follow: followDrag },
   camera_explorer: { draw: drawCameraExplorer },
   opencv_vs_opengl: { draw: drawOpencvVsOpengl },
 };
@@ -57,16 +60,64 @@ function listenToMouse(canvas, model) {
     const scene = model.get("scene");
     const drag = scene && SCENES[scene.kind] && SCENES[scene.kind].drag;
     if (!drag || !(event.buttons & 1)) return;
-    const r = canvas.getBoundingClientRect();
-    const u = ((event.clientX - r.left) * scene.width) / r.width;
-    const v = ((event.clientY - r.top) * scene.height) / r.height;
-    if (setValues(model, drag(scene, [u, v], valuesOf(model, scene), event.type))) event.preventDefault();
+    const at = figurePixel(canvas, scene, event);
+    if (setValues(model, drag(scene, at, valuesOf(model, scene), event.type))) event.preventDefault();
   };
   canvas.addEventListener("pointerdown", (event) => {
     canvas.setPointerCapture(event.pointerId);
     onPointer(event);
   });
   canvas.addEventListener("pointermove", onPointer);
+}
+
+// A canvas event's position in figure pixels (u right, v down), and whether it lies in a box.
+function figurePixel(canvas, scene, event) {
+  const r = canvas.getBoundingClientRect();
+  return [((event.clientX - r.left) * scene.width) / r.width, ((event.clientY - r.top) * scene.height) / r.height];
+}
+const inBox = (b, [u, v]) => u >= b.left && u <= b.right && v >= b.top && v <= b.bottom;
+
+// A press on a 3-D panel (scene.turn: their boxes), the moves while it is held and its release go to
+// the kernel (BrowserView.publish with a scene to build again), where matplotlib turns the panel as
+// under ipympl and the scene comes back with the new background. One message at a time: the next
+// waits for the kernel's answer, and of the moves waiting only the last is sent.
+function listenToTurns(canvas, model) {
+  const queue = [];
+  let waiting = false, pressed = false;
+  const flush = () => {
+    if (waiting || !queue.length) return;
+    waiting = true;
+    model.send(queue.shift());
+  };
+  model.on("msg:custom", (msg) => {
+    if (!msg.turned) return;
+    waiting = false;
+    flush();
+  });
+  const send = (event, type) => {
+    const [u, v] = figurePixel(canvas, model.get("scene"), event);
+    if (type === "pointermove" && queue.length && queue[queue.length - 1].type === type) queue.pop();
+    queue.push({ type, u, v, button: event.button + 1 }); // matplotlib's buttons count from 1
+    flush();
+  };
+  canvas.addEventListener("pointerdown", (event) => {
+    const scene = model.get("scene");
+    if (!scene || !(scene.turn || []).some((b) => inBox(b, figurePixel(canvas, scene, event)))) return;
+    pressed = true;
+    send(event, "pointerdown");
+  });
+  canvas.addEventListener("pointermove", (event) => pressed && send(event, "pointermove"));
+  const release = (event) => {
+    if (!pressed) return;
+    pressed = false;
+    send(event, "pointerup");
+  };
+  canvas.addEventListener("pointerup", release);
+  canvas.addEventListener("pointercancel", release);
+  canvas.addEventListener("contextmenu", (event) => {
+    const scene = model.get("scene");
+    if (scene && (scene.turn || []).some((b) => inBox(b, figurePixel(canvas, scene, event)))) event.preventDefault();
+  }); // the right button zooms a 3-D panel, as under ipympl
 }
 
 function render({ model, el }) {
@@ -105,11 +156,21 @@ function render({ model, el }) {
     };
     background.src = scene.background;
     for (const name of scene.params.filter((n) => !listening.has(n))) {
-      model.on(`change:${name}`, draw);
+      model.on(`change:${name}`, () => {
+        const follow = SCENES[model.get("scene").kind].follow;
+        if (!follow) return draw();
+        // after the link that set `name` is done: a link is deaf while it sets, so a value set
+        // back within it (a slider stopped short) would not reach its control
+        queueMicrotask(() => {
+          const now = model.get("scene");
+          if (!setValues(model, follow(now, name, valuesOf(model, now)))) draw(); // else drawn on its change
+        });
+      });
       listening.add(name);
     }
   };
   listenToMouse(canvas, model);
+  listenToTurns(canvas, model);
   model.on("change:scene", load);
   model.on("change:alt", () => canvas.setAttribute("aria-label", model.get("alt") || ""));
   load();

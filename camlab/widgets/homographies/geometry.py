@@ -648,10 +648,15 @@ def _drag_line_names(ax_s, line_pts) -> None:
         )  # black on a white halo: readable on any colour
 
 
-def _drag_keys(control, out_hw) -> dict:
+def _drag_keys(control, out_hw, browser: bool) -> dict:
     """The corner sliders, stopped short of a dent or bow tie (typed or dragged corners go anywhere)."""
     return corner_keys(
-        control, CORNER_NAMES, out_hw[1] - 1, out_hw[0] - 1, clamp=convex_clamp(SLIDER_MARGIN_PX)
+        control,
+        CORNER_NAMES,
+        out_hw[1] - 1,
+        out_hw[0] - 1,
+        clamp=convex_clamp(SLIDER_MARGIN_PX),
+        browser_syncs=browser,
     )
 
 
@@ -713,7 +718,7 @@ def drag_homography() -> Demo:
     art = _drag_artists(view, ax_s, ax_t, out_hw)
     readout = W.HTML()
     control = corner_text(format_corners(_DRAG_START), "corners (u, v; ...)")
-    keys = _drag_keys(control, out_hw)
+    keys = _drag_keys(control, out_hw, view.browser)
     current = {"corners": _DRAG_START.copy()}
 
     def update(v: dict, state: dict) -> None:
@@ -758,7 +763,7 @@ def drag_homography() -> Demo:
         )
     )
     longest = "cannot use these corners:\n" + "\n".join(["x"] * 3)  # as many lines as TORN_DRAG
-    notes = dict(torn=TORN_DRAG, longest=longest, radius=DRAG_RADIUS_PX)
+    notes = dict(torn=TORN_DRAG, longest=longest, margin=SLIDER_MARGIN_PX, radius=DRAG_RADIUS_PX)
     view.publish(
         demo, drag_scene((ax_s, ax_t), art, pic, fixed, notes)
     )  # the browser draws the moves

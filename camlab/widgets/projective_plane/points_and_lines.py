@@ -22,11 +22,13 @@ from ..browser import BrowserView
 from ..browser.plane_scenes import (
     cross_ratio_scene,
     duality_scene,
+    lift_scene,
     parallel_scene,
     vanishing_scene,
 )
 from ..controls import monospace
 from .twins import (
+    LIFT_NOTES,
     ab_over_bc,
     cross_ratio_caption,
     cross_ratio_homography,
@@ -34,6 +36,7 @@ from .twins import (
     duality_caption,
     horizon_note,
     label_offset,
+    lift_view,
     line_at_angle,
     meet_or_none,
     meet_w_curve,
@@ -94,7 +97,7 @@ def _lift_figure(view: FigureView) -> SimpleNamespace:
     ax3.legend(loc="upper center", bbox_to_anchor=(0.5, 0.02), ncol=2, fontsize=8)
     (dot,) = ax2.plot([], [], "o", color=palette.TAB_BLUE, ms=9)
     note = ax2.text(0, -1.8, "", ha="center", fontsize=8, color="k", bbox={"fc": "w", "ec": "none"})
-    return SimpleNamespace(ax2=ax2, ray=ray, scaled=scaled, hit=hit, dot=dot, note=note)
+    return SimpleNamespace(ax3=ax3, ax2=ax2, ray=ray, scaled=scaled, hit=hit, dot=dot, note=note)
 
 
 @register(
@@ -123,43 +126,33 @@ def lift_to_plane() -> Demo:
         homogeneous 3-vector λ (x, y, w), ``point`` the Euclidean (x/w, y/w) it names, or None
         at w = 0).
     """
-    view = FigureView(figsize=(9, 4.6))
+    view = BrowserView(("x", "y", "w", "scale"), figsize=(9, 4.6))
     f = _lift_figure(view)
     ax2, ray, scaled, hit, dot, note = f.ax2, f.ray, f.scaled, f.hit, f.dot, f.note
-    box, w_max = _LIFT_BOX, _LIFT_SCALE
     view.animate(ray, scaled, hit, dot, note)
     readout = W.HTML()
 
     def update(v: dict, state: dict) -> None:
+        # the per-move geometry (its twin liftView in the browser's geometry.js)
         lam, r = v["scale"], np.array([v["x"], v["y"], v["w"]])
-        xh = lam * r
-        ideal = abs(r[2]) < 1e-12
-        state.update(point_h=xh, point=None if ideal else r[:2] / r[2])
-        reach = min(box / max(abs(r[0]), abs(r[1]), 1e-12), w_max / max(abs(r[2]), 1e-12))
-        end = reach * r  # the ray, both halves, clipped to the 3-D box
-        ray.set_data_3d([-end[0], end[0]], [-end[1], end[1]], [-end[2], end[2]])
+        g = lift_view(r, lam, _LIFT_BOX, _LIFT_SCALE, ax2.get_xlim(), ax2.get_ylim())
+        xh = g.point_h
+        state.update(point_h=xh, point=g.point)
+        ray.set_data_3d(*g.ends.T)
         scaled.set_data_3d([xh[0]], [xh[1]], [xh[2]])
-        scaled.set_visible(abs(lam) > 1e-12)  # λ = 0 names no point: the legend says λ ≠ 0
-        on_plane = not ideal and np.abs(r[:2] / r[2]).max() <= box
-        hit.set_data_3d(*([[c] for c in r / r[2]] if on_plane else [[], [], []]))
-        if not r.any():  # x = y = w = 0: the zero vector is no ray
+        scaled.set_visible(g.scaled_shown)  # λ = 0 names no point: the legend says λ ≠ 0
+        hit.set_data_3d(*([[c] for c in g.hit] if g.hit is not None else [[], [], []]))
+        note.set_text(g.note)
+        if g.dot is None:  # x = y = w = 0: the zero vector is no ray
             dot.set_data([], [])
-            note.set_text("(x, y, w) = (0, 0, 0) is no ray: it names no point")
             readout.value = monospace("(x, y, w) = (0, 0, 0): no ray through 0, no point")
             return
-        pos, direction = arrow_to_infinity(r, ax2)
+        pos, direction = g.dot
         dot.set_data([pos[0]], [pos[1]])
         dot.set_marker("o" if not direction.any() else arrow_marker(direction, ax2))
-        note.set_text(
-            "w = 0: an ideal point, the direction ±(x, y)\n(no sign: the arrow could point either way)"
-            if ideal
-            else (
-                "" if not direction.any() else "(x/w, y/w) is off this view: the arrow points to it"
-            )
-        )
-        if abs(lam) < 1e-12:
+        if not g.scaled_shown:
             second = "λ = 0 gives (0, 0, 0): on every line through 0, so it names no point"
-        elif ideal:
+        elif g.point is None:
             second = "w = 0: no division; the ray lies in the plane w = 0 and never meets w = 1"
         else:
             back = xh[:2] / xh[2]
@@ -172,7 +165,7 @@ def lift_to_plane() -> Demo:
         "w": slider(1.0, 0.0, 1.0, 0.05, "ray's w"),
         "scale": slider(1.6, -_LIFT_SCALE, _LIFT_SCALE, 0.05, "scale λ"),
     }
-    return build_demo(
+    demo = build_demo(
         "lift_to_plane",
         controls,
         view,
@@ -180,6 +173,12 @@ def lift_to_plane() -> Demo:
         title="Homogeneous coordinates are defined up to scale",
         extra=[readout],
     )
+    world = dict(
+        box=_LIFT_BOX, w_max=_LIFT_SCALE, arrow=ARROW_PATH, notes=LIFT_NOTES, longest=LIFT_NOTES[0]
+    )
+    # the browser draws the moves; a drag on the 3-D box turns it in the kernel (the scene built again)
+    view.publish(demo, lambda: lift_scene(f, world))
+    return demo
 
 
 SAME_LINE_NOTE = "l2 = l1 at 30°: one line,\nno single meet point, no w"

@@ -14,7 +14,7 @@ import numpy as np
 from ... import fixtures
 from ... import projective as pj
 from ...camera import rotation_z
-from ...plotting.plane import arrow_placement
+from ...plotting.plane import ArrowPlacement, arrow_placement
 
 __all__ = [
     "CONIC_TANGENTS",
@@ -30,7 +30,9 @@ __all__ = [
     "duality_caption",
     "horizon_note",
     "in_square_view",
+    "LiftView",
     "label_offset",
+    "lift_view",
     "line_at_angle",
     "meet_or_none",
     "meet_w_curve",
@@ -508,4 +510,89 @@ def conic_caption(g: ConicGeometry, h31: float, h32: float) -> str:
         f"C': axis ratio {g.axis_ratio:.3f}, {shape}; {bounded}\n"
         f"max |x'ᵀC'x'| over the 8 points {g.residual:.0e};  "
         f"max |l'ᵀC*'l'| over the 4 tangents {g.tangent_residual:.0e}"
+    )
+
+
+class LiftView(NamedTuple):
+    """What :func:`lift_view` gives: the ray of a homogeneous point and where each part is drawn.
+
+    Attributes
+    ----------
+    point_h : (3,) ndarray
+        The scaled homogeneous point λ (x, y, w).
+    point : (2,) ndarray or None
+        The Euclidean point (x/w, y/w) the ray names; None at w = 0 (an ideal point).
+    ends : (2, 3) ndarray
+        The ray's two ends, both halves through 0, clipped to the 3-D box.
+    scaled_shown : bool
+        False at λ = 0: (0, 0, 0) names no point, its marker is hidden.
+    hit : (3,) ndarray or None
+        Where the ray meets the plane w = 1, (x/w, y/w, 1); None when it does not within the box.
+    dot : ArrowPlacement or None
+        Where the point is drawn in the plane w = 1 (an arrow at the edge when it is off the view
+        or ideal); None for the zero vector, which is no ray.
+    note : str
+        The note over the plane ("" when there is nothing to say).
+    """
+
+    point_h: np.ndarray
+    point: np.ndarray | None
+    ends: np.ndarray
+    scaled_shown: bool
+    hit: np.ndarray | None
+    dot: ArrowPlacement | None
+    note: str
+
+
+LIFT_NOTES = (
+    "w = 0: an ideal point, the direction ±(x, y)\n(no sign: the arrow could point either way)",
+    "(x/w, y/w) is off this view: the arrow points to it",
+    "(x, y, w) = (0, 0, 0) is no ray: it names no point",
+)
+"""lift_to_plane's notes over the plane: an ideal point, a point off the view, the zero vector."""
+
+
+def lift_view(ray: np.ndarray, scale: float, box: float, w_max: float, xlim, ylim) -> LiftView:
+    """lift_to_plane's per-move arithmetic: the ray of (x, y, w) in a 3-D box, and its point in w = 1.
+
+    The ray's end is ``reach * (x, y, w)`` with the largest ``reach`` that keeps |x|, |y| <= box
+    and |w| <= w_max; the ray meets the plane w = 1 at (x/w, y/w, 1), drawn when that lies in the
+    box. The plane's view draws the point as :func:`~camlab.plotting.plane.arrow_placement` places
+    it in the limits ``xlim`` x ``ylim``.
+
+    Parameters
+    ----------
+    ray : (3,) array_like
+        The ray's direction (x, y, w).
+    scale : float
+        λ.
+    box, w_max : float
+        The 3-D box's half-extents: in x and y, and in w.
+    xlim, ylim : (lo, hi)
+        The plane's view limits.
+
+    Returns
+    -------
+    LiftView
+        The scaled point, the ray's ends, the hit on w = 1, the plane's dot and its note.
+    """
+    r = np.asarray(ray, dtype=float)
+    xh = scale * r
+    ideal = abs(r[2]) < 1e-12
+    reach = min(box / max(abs(r[0]), abs(r[1]), 1e-12), w_max / max(abs(r[2]), 1e-12))
+    end = reach * r  # the ray, both halves, clipped to the 3-D box
+    on_plane = not ideal and np.abs(r[:2] / r[2]).max() <= box
+    hit = r / r[2] if on_plane else None
+    dot, note = None, LIFT_NOTES[2]
+    if r.any():  # x = y = w = 0: the zero vector is no ray
+        dot = arrow_placement(r, xlim, ylim)
+        note = LIFT_NOTES[0] if ideal else (LIFT_NOTES[1] if dot.direction.any() else "")
+    return LiftView(
+        point_h=xh,
+        point=None if ideal else r[:2] / r[2],
+        ends=np.array([-end, end]),
+        scaled_shown=abs(scale) > 1e-12,
+        hit=hit,
+        dot=dot,
+        note=note,
     )
