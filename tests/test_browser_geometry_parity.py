@@ -484,3 +484,14 @@ def test_the_dolly_zoom_errors_and_readout_equal_camlab():
     wrong = [(r, t, _rms_text(r)) for r, t in zip(rms, out, strict=True) if t != _rms_text(r)]
     assert not wrong, f"JS and Python RMS readouts differ: {wrong[:5]}"
     print(f"dolly zoom errors: worst relative error {worst:.2e}")
+
+
+def test_the_joined_module_the_canvas_loads_parses(tmp_path):
+    """esm_source joins every module into one: two modules declaring the same top-level name make it
+    a SyntaxError, and then no browser-drawn demo shows (every browser test waits out its timeout)."""
+    from camlab.widgets.browser import esm_source
+
+    joined = tmp_path / "camlab_canvas.mjs"
+    joined.write_text(esm_source(), encoding="utf-8")
+    run = subprocess.run([NODE, "--check", str(joined)], capture_output=True, text=True, timeout=60)
+    assert run.returncode == 0, f"the joined ES module does not parse:\n{run.stderr[-1500:]}"

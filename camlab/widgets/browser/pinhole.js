@@ -1,6 +1,7 @@
 import { formatFixed } from "./geometry.js";
 import { liveImage } from "./homography.js";
 import { renderPlanes } from "./textured.js";
+import { project3d } from "./view3d.js";
 import { dot, polygon, polyline, putPixels, textLines } from "./drawing.js";
 // (one line each: esm_source drops the lines that start with "import")
 // Lesson 01's pinhole_projection drawn in the browser: twin of
@@ -138,19 +139,17 @@ export function pinholeFrame(scene, p) {
 // (x right, y down, z forward) drawn at plot (z, -x, -y), projected by the axes' 4x4 M
 // (proj3d.proj_transform) and mapped by `toPixels` (to_canvas_pixels). Returns [u, v, depth]:
 // canvas px and the projected depth mplot3d sorts a collection's polygons by.
-export function project3d(M, toPixels, [x, y, z]) {
-  const q = [z, -x, -y, 1];
-  const r = M.map((row) => row[0] * q[0] + row[1] * q[1] + row[2] * q[2] + row[3] * q[3]);
-  const px = r[0] / r[3], py = r[1] / r[3];
+export function pinholePixels(M, toPixels, [x, y, z]) {
+  const [[px, py, depth]] = project3d(M, [[z, -x, -y]]);
   const T = toPixels;
-  return [T[0][0] * px + T[0][1] * py + T[0][2], T[1][0] * px + T[1][1] * py + T[1][2], r[2] / r[3]];
+  return [T[0][0] * px + T[0][1] * py + T[0][2], T[1][0] * px + T[1][1] * py + T[1][2], depth];
 }
 
 // A Poly3DCollection as mplot3d draws it: each polygon projected, the farthest (largest mean
 // projected depth) first.
 function fills3d(ctx, scene, polys) {
   const projected = polys.map(([p, grey]) => {
-    const pts = p.map((c) => project3d(scene.M, scene.toPixels, c));
+    const pts = p.map((c) => pinholePixels(scene.M, scene.toPixels, c));
     return [pts, pts.reduce((s, c) => s + c[2], 0) / pts.length, grey];
   });
   projected.sort((a, b) => b[1] - a[1]);
@@ -162,7 +161,7 @@ function fills3d(ctx, scene, polys) {
 
 // Segments (camera frame) as one canvas polyline with a break after each.
 function segments3d(scene, segs) {
-  return segs.flatMap(([a, b]) => [project3d(scene.M, scene.toPixels, a), project3d(scene.M, scene.toPixels, b), [NaN, NaN]]);
+  return segs.flatMap(([a, b]) => [pinholePixels(scene.M, scene.toPixels, a), pinholePixels(scene.M, scene.toPixels, b), [NaN, NaN]]);
 }
 
 const PINHOLE_WORK = new WeakMap(); // per scene: the planes' texture levels, the render's buffers, RGBA images
@@ -225,11 +224,11 @@ export function drawPinhole(ctx, scene, p) {
   polyline(ctx, segments3d(scene, v.rays), st.rays);
   for (const name of ["virtual", "pinhole", "real"]) {
     if (name === "pinhole") {
-      dot(ctx, project3d(scene.M, scene.toPixels, [0, 0, 0]), st.pinhole);
+      dot(ctx, pinholePixels(scene.M, scene.toPixels, [0, 0, 0]), st.pinhole);
       continue;
     }
     fills3d(ctx, scene, v.fills[name]);
-    polyline(ctx, v.frames[name].map((c) => project3d(scene.M, scene.toPixels, c)), st.frames[name]);
+    polyline(ctx, v.frames[name].map((c) => pinholePixels(scene.M, scene.toPixels, c)), st.frames[name]);
   }
   // the recorded image and the two planes' pictures
   const [w, h] = scene.size;
