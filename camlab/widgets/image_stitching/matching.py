@@ -216,7 +216,7 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
         s.true_homography(i, j),
         imgs[i].shape,
         color=VIEW_COLOURS[i],  # view i's colour (the lesson's key), with a black edge
-        lw=3,
+        lw=5,  # wide enough to show beside the RANSAC frame drawn over it
         label="true",
         path_effects=palette.halo(1.5, "black"),
         zorder=1.5,  # under the moving marks and frame, in a full redraw as in a live frame
