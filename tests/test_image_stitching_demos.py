@@ -382,6 +382,9 @@ def test_gains_check_passes_an_optimiser_that_stopped_short_and_names_brown_and_
 
     with pytest.raises(AssertionError, match="Brown & Lowe's value"):
         ex.check_gains_from_overlaps(lambda N, M: _solve(N, np.asarray(M, float), sigma_g=0.1))
+    # the data term 100 x too weak gives the same gains: the hint names that cause too
+    with pytest.raises(AssertionError, match=r"sigma_N = 100"):
+        ex.check_gains_from_overlaps(lambda N, M: _solve(N, np.asarray(M, float), sigma_n=100.0))
 
 
 def _loop_student(data=2.0, prior="N"):

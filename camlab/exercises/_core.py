@@ -408,7 +408,7 @@ def _in_place_message(
             f"`a /= a[2, 2]`, `a -= m` or `a[0, 0] = 0` on one of the arrays in `{a}`",
             "`a / a[2, 2]`, `a - m`",
         )
-        copy = "convert each array to a new one first (`a = np.array(a, dtype=float)` always copies; np.asarray returns a float64 array itself)"
+        copy = "convert each array to a new one first (`a = np.array(a, dtype=float)` always copies; np.asarray returns the same array, not a copy, when it is float64 already)"
     elif np.ndim(args[changed[0]]) == 1 and a in (
         "image",
         "img",

@@ -268,8 +268,10 @@ _GAIN_SLIPS = (
     Mistake(
         "sigma_g = 0.1",
         lambda c: _solve(c.N, c.M, sigma_g=0.1),
-        "you took sigma_g = 0.1, Brown & Lowe's value; this exercise (and camlab) takes sigma_g = 1, a weaker "
-        "prior, so that exposures 30 % apart are not pulled back towards 1 (section 5).",
+        "the prior weighs 100 times too much against the data term, and two slips give exactly these gains: "
+        "sigma_g = 0.1, Brown & Lowe's value (this exercise and camlab take sigma_g = 1, a weaker prior, so "
+        "that exposures 30 % apart are not pulled back towards 1; section 5), or the data term divided by "
+        "10 000 instead of sigma_N^2 = 100 (sigma_N = 100, or sigma_N^2 squared again).",
     ),
     Mistake(
         "means in 0-1",

@@ -729,7 +729,8 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
     """The figure of :func:`parallax_ghosting`.
 
     The blend in axes of :data:`PARALLAX_BOX`, its title and the key to the edges' colours beside
-    it; returns ``im``, ``title`` and ``legend`` (registered with ``view`` in that order).
+    it (a hint in its place while the edges are off); returns ``im``, ``title``, ``legend`` and
+    ``hint`` (registered with ``view`` in that order).
     """
     box = PARALLAX_BOX
     ax = view.fig.subplots()
@@ -767,7 +768,20 @@ def _parallax_figure(view: FigureView) -> SimpleNamespace:
             facecolor="0.55",
         )
     )
-    return SimpleNamespace(im=im, title=title, legend=legend)
+    # in the legend's place while the edges are off: what the strip is for
+    hint = view.animate(
+        ax.text(
+            0.5,
+            -0.04,
+            'tick "both views\' edges" to colour the edges each view sees',
+            transform=ax.transAxes,
+            ha="center",
+            va="top",
+            fontsize=8,
+            color="0.3",
+        )
+    )
+    return SimpleNamespace(im=im, title=title, legend=legend, hint=hint)
 
 
 def _blend_name(method: str, levels: int = 5) -> str:
@@ -873,6 +887,7 @@ def parallax_ghosting() -> Demo:
         art.im.set_extent(_fitted_extent((hh, ww), PARALLAX_BOX))
         art.im.set_data(shown[(b, v["method"], bool(v["edges"]))])
         art.legend.set_visible(bool(v["edges"]))
+        art.hint.set_visible(not v["edges"])
         n, k = len(reg.matches.src), int(reg.inliers.sum())
         diff = 255 * p.misalignment
         title, readout.value = _parallax_texts(

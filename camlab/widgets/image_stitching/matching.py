@@ -19,6 +19,7 @@ from ... import stitching as st
 from ...fixtures import panorama_examples as pe
 from ...plotting import palette
 from ...plotting.stitching import (
+    VIEW_COLOURS,
     draw_keypoints,
     draw_matches,
     match_segments,
@@ -72,14 +73,19 @@ def feature_matches() -> Demo:
     ax = view.fig.subplots()
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     # the images stay, only the lines (and the keypoints' visibility) change. Green over red here
-    # (at r near 1 the many red lines would bury the few green ones), and over both, in dark grey
-    # dashes on a light rim (the seams' are white on black), the matches the mutual check drops
+    # (at r near 1 the many red lines would bury the few green ones), and over both, in mid-grey
+    # dashes on a black rim (grey at display size over any photo), the matches the mutual check drops
     # (a handful: none may hide under the green bundle)
     art["good"].set_zorder(2.2)
-    dropped = LineCollection([], colors="0.25", linewidths=2.2, linestyles=(0, (5, 2)), zorder=2.5)
-    dropped.set_path_effects(palette.halo(2.2, "white"))
+    # the black rim is a dashed line of its own, each dash 1 pt longer at both ends than the grey
+    # one's 12.5 pt (a halo's dashes would scale with its width and fill the gaps black)
+    rim = LineCollection(
+        [], colors="black", linewidths=4.5, linestyles=(1 / 4.5, (14.5 / 4.5, 3 / 4.5)), zorder=2.5
+    )
+    dropped = LineCollection([], colors="0.6", linewidths=2.5, linestyles=(0, (5, 2)), zorder=2.5)
+    ax.add_collection(rim)
     ax.add_collection(dropped)
-    view.animate(dropped, art["bad"], art["good"])
+    view.animate(rim, dropped, art["bad"], art["good"])
     kps = [
         draw_keypoints(
             ax,
@@ -111,6 +117,7 @@ def feature_matches() -> Demo:
         m_all = ft.filter_matches(knn[(i, j)], v["ratio"]) if v["mutual"] else m
         gone = ~np.isin(m_all.idx1, m.idx1)
         dropped.set_segments(match_segments(m_all.src, m_all.dst, art["offset"])[gone])
+        rim.set_segments(dropped.get_segments())
         n, nbad = len(good), int((~good).sum())
         thinned = (
             f"1 match in {every} drawn (keypoint index divisible by {every}); wrong ones dashed"
@@ -131,7 +138,7 @@ def feature_matches() -> Demo:
             drawn_dropped=int(gone.sum()),
         )
         readout.value = monospace(
-            f"keypoints: {len(feats[i].points)} / {len(feats[j].points)}\n"
+            f"keypoints: view {i} {len(feats[i].points)}, view {j} {len(feats[j].points)}\n"
             f"matches kept: {n}\nwrong (red): {nbad} ({100 * nbad / max(n, 1):.0f}%)"
             + f"\nlines drawn: {int((good & show).sum())} green, {int((~good & show).sum())} red:\n"
             f"  1 match in {every} (keypoint index divisible by {every})"
@@ -208,10 +215,10 @@ def _registration_image(view: FigureView, ax, s, imgs, i: int, j: int) -> tuple:
         ax,
         s.true_homography(i, j),
         imgs[i].shape,
-        color=palette.GREY,
-        lw=3,
+        color=VIEW_COLOURS[i],  # view i's colour (the lesson's key), with a black edge
+        lw=5,  # wide enough to show beside the RANSAC frame drawn over it
         label="true",
-        path_effects=palette.halo(1.5, "black"),  # grey with a black edge: not the seams' white
+        path_effects=palette.halo(1.5, "black"),
         zorder=1.5,  # under the moving marks and frame, in a full redraw as in a live frame
     )
     est_box = view.animate(
