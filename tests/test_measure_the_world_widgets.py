@@ -57,6 +57,14 @@ def test_ray_angle_follows_the_two_laws():
     assert (
         demo.state["in_frame"] is False
     )  # nearly parallel rays: the readout says the ellipse leaves the frame
+    # the lesson's claim: on the slider's whole degrees the zoom holds the ellipse from 10 deg at
+    # 0.5 px and from 19 deg at 1 px, and at every angle (from 5 deg) at 0.1 px
+    for pick, first in ((0.5, 10.0), (1.0, 19.0), (0.1, 5.0)):
+        demo.set(alpha=first, pick=pick)
+        assert demo.state["in_frame"] is True
+        if first > 5.0:
+            demo.set(alpha=first - 1, pick=pick)
+            assert demo.state["in_frame"] is False
 
 
 def test_flip_pose_gives_section_2b_gaps():
@@ -65,7 +73,7 @@ def test_flip_pose_gives_section_2b_gaps():
     demo = flip_pose()  # the 5 cm tag at 1.5 m and 20 deg: 0.7 sigma, the cameras 1026 mm apart
     assert abs(demo.state["gap"] - 0.72) < 0.01 and abs(demo.state["dC_mm"] - 1026) < 1
     assert demo.state["largest_px"] < SIGMA_PX and abs(demo.state["dR_deg"] - 40) < 0.5
-    assert "differ by a 40° rotation and put the camera 1026 mm apart" in demo.state["readout"]
+    assert "differ by a rotation of 40° and put the camera 1026 mm apart" in demo.state["readout"]
     assert f"move by at most {demo.state['largest_px']:.2f} px" in demo.state["readout"]
     demo.set(target="board (54 corners)")  # the board there: 13.3 sigma, never flips
     assert abs(demo.state["gap"] - 13.28) < 0.01 and demo.state["rule"] < 1e-30

@@ -9,15 +9,29 @@ reprojection error
 the maximum-likelihood pose under independent Gaussian pixel noise. :math:`E` is not convex,
 so :func:`solve_pnp` starts from a closed-form estimate and polishes it:
 
-* **Planar points** (a chessboard: Z = 0, or any coplanar set, found by the SVD of the centred
-  points). The plane's points and their pixels are related by a homography
+* **Points on or near one plane** (a chessboard: Z = 0; measured points scattered a little off
+  their plane). The plane's points and their pixels are related by a homography
   :math:`H \simeq K [r_1\ r_2\ t]` (Zhang 2000, section 3.1 [1]_), so
   :math:`K^{-1} H = \lambda [r_1\ r_2\ t]` gives the pose
-  (:func:`camlab.calibration.extrinsics_from_homography`).
+  (:func:`camlab.calibration.extrinsics_from_homography`). The **planarity test** is OpenCV's
+  (``cvFindExtrinsicCameraParams2``): the centred points' scatter matrix
+  :math:`(X - c)^\top (X - c)` has eigenvalues :math:`w_1 \ge w_2 \ge w_3` (the squared singular
+  values of :math:`X - c`), and the points count as planar when :math:`w_3 / w_2 <`
+  ``PLANAR_TOL`` = :math:`10^{-3}`, i.e. their rms distance from the best-fit plane is under
+  3 % of their spread along the plane's narrower direction. The start then comes from the
+  homography of the points *flattened* onto that plane; the refinement below uses the points as
+  they are, so flattening costs nothing in the answer.
 * **General points**: the camera DLT (:func:`camlab.camera.estimate_projection_matrix`, H&Z
   section 7.1 [2]_) gives :math:`P \simeq K [R \mid t]`; with K known,
-  :math:`K^{-1} P = s [R \mid t]`, where :math:`s = \det(K^{-1} P_{3\times 3})^{1/3}`, and the
-  nearest rotation to :math:`K^{-1} P_{3\times3} / s` is R.
+  :math:`M = K^{-1} P = s [R \mid t]`. The scale's size is :math:`|s| = |\det M_{3\times3}|^{1/3}`;
+  its sign is the one that puts the points in front of the camera, since the third row gives
+  each point's depth times s, :math:`m_3^\top (X_i, 1) = s\, z_{c,i}` (H&Z section 6.2.3, the
+  depth of a point). The sign of :math:`\det M_{3\times3}` itself is not used: for points near a
+  plane :math:`M_{3\times3}` is nearly singular and that sign is noise, which would start from
+  the mirror pose :math:`(R\, \mathrm{Rot}_z(180^\circ), -t)` that reprojects the same.
+  The nearest rotation to :math:`M_{3\times3} / s` is R.
+* **Cheirality.** A pose that puts any point behind the camera (:math:`z_c \le 0`) is refused
+  with an error rather than returned: its reprojection can look fine while the answer is wrong.
 * **Refinement** by Levenberg-Marquardt (:func:`camlab.optimise.levenberg_marquardt`) over six
   numbers: a small rotation :math:`\delta\omega` applied on the left,
   :math:`R \leftarrow \exp([\delta\omega]_\times) R` (Rodrigues,
@@ -94,8 +108,9 @@ __all__ = [
 ]
 
 METHODS = ("auto", "planar", "dlt")
-PLANAR_TOL = 1e-9
-"""Points are coplanar when their thinnest singular value is below this times the widest."""
+PLANAR_TOL = 1e-3
+"""Points are (nearly) planar when their scatter matrix's smallest eigenvalue is below this times
+the middle one (OpenCV's test in ``cvFindExtrinsicCameraParams2``)."""
 
 
 class PlaneFrame(NamedTuple):
@@ -314,10 +329,12 @@ def _update(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
 
 
 def plane_frame(X: np.ndarray) -> PlaneFrame | None:
-    r"""A frame of the plane through coplanar points, or None when they are not coplanar.
+    r"""The best-fit plane of points on or near one plane, or None when they span 3-D.
 
-    The SVD of the centred points :math:`X - c = U S V^\top`: the last right singular vector is
-    the plane's normal when :math:`s_3 \le` ``PLANAR_TOL`` :math:`s_1`.
+    The SVD of the centred points :math:`X - c = U S V^\top`: the eigenvalues of the scatter
+    matrix are :math:`s_k^2`, and the points pass the planarity test when
+    :math:`s_3^2 <` ``PLANAR_TOL`` :math:`s_2^2`; the last right singular vector is then the
+    best-fit plane's normal.
 
     Parameters
     ----------
@@ -327,14 +344,15 @@ def plane_frame(X: np.ndarray) -> PlaneFrame | None:
     Returns
     -------
     PlaneFrame or None
-        ``(centre, basis)``: the points are :math:`X = c + B p` with :math:`p_z = 0`; ``B`` a
-        rotation (identity and ``c = 0`` for points already on Z = 0).
+        ``(centre, basis)``: the points flattened onto the plane are :math:`c + B p` with
+        :math:`p = B^\top (X - c)`, :math:`p_z` set to 0; ``B`` a rotation (identity and
+        ``c = 0`` for points already on Z = 0).
     """
     if np.all(X[:, 2] == 0):
         return PlaneFrame(np.zeros(3), np.eye(3))
     c = X.mean(axis=0)
     _, s, Vt = np.linalg.svd(X - c)
-    if s[2] > PLANAR_TOL * s[0]:
+    if s[2] ** 2 >= PLANAR_TOL * s[1] ** 2:
         return None
     B = Vt.T.copy()
     if np.linalg.det(B) < 0:
@@ -343,7 +361,7 @@ def plane_frame(X: np.ndarray) -> PlaneFrame | None:
 
 
 def _planar_start(K: np.ndarray, X: np.ndarray, uv: np.ndarray, frame) -> tuple:
-    """Zhang's pose from the homography of the plane's 2-D points to the ideal pixels."""
+    """Zhang's pose from the homography of the points, flattened onto their plane, to the ideal pixels."""
     c, B = frame
     p = (X - c) @ B
     H = estimate_homography(p[:, :2], uv)
@@ -353,9 +371,12 @@ def _planar_start(K: np.ndarray, X: np.ndarray, uv: np.ndarray, frame) -> tuple:
 
 
 def _dlt_start(K: np.ndarray, X: np.ndarray, uv: np.ndarray) -> tuple:
-    """The calibrated DLT: K^-1 P = s [R | t] with s the cube root of det(K^-1 M)."""
+    """The calibrated DLT: K^-1 P = s [R | t], |s| = |det(K^-1 M)|^(1/3), the sign putting the points in front."""
     M = np.linalg.solve(K, estimate_projection_matrix(X, uv))
-    s = np.cbrt(np.linalg.det(M[:, :3]))
+    s = np.cbrt(abs(np.linalg.det(M[:, :3])))
+    depth = X @ M[2, :3] + M[2, 3]  # s times each point's depth z_c
+    if np.median(depth) < 0:
+        s = -s
     return nearest_rotation(M[:, :3] / s), M[:, 3] / s
 
 
@@ -384,15 +405,17 @@ def _start(K, X, ideal, method) -> tuple:
     frame = plane_frame(X)
     if method == "planar" and frame is None:
         raise DegenerateError(
-            "object_points: method='planar' needs coplanar points, but these span 3-D; "
-            "use method='auto' or 'dlt'"
+            "object_points: method='planar' needs points on or near one plane (the smallest "
+            "eigenvalue of their scatter below PLANAR_TOL = 1e-3 of the middle one), but these "
+            "span 3-D; use method='auto' or 'dlt'"
         )
     if frame is not None and method != "dlt":
         return (*_planar_start(K, X, ideal, frame), "planar")
     if frame is not None:
         raise DegenerateError(
-            "object_points: method='dlt' needs points that are not coplanar (a plane fixes only a "
-            "homography); use method='auto' or 'planar'"
+            "object_points: method='dlt' needs points that span 3-D, but these are on or near one "
+            "plane (a plane fixes only a homography, and the DLT of nearly planar points is "
+            "ill-conditioned); use method='auto' or 'planar'"
         )
     if len(X) < 6:
         raise CamlabInputError(
@@ -422,8 +445,9 @@ def solve_pnp(
     dist : (5,) or (4,) array_like or None
         ``(k1, k2, p1, p2[, k3])``, OpenCV's order; None for an ideal pinhole.
     method : {"auto", "planar", "dlt"}
-        The closed-form start: the homography of coplanar points or the camera DLT (N >= 6,
-        not coplanar); "auto" chooses by the SVD of the points.
+        The closed-form start: the homography of the points flattened onto their best-fit plane
+        (points on or near one plane) or the camera DLT (N >= 6, points spanning 3-D); "auto"
+        chooses by the planarity test. Either way the refinement uses the points as given.
 
     Returns
     -------
@@ -436,7 +460,8 @@ def solve_pnp(
     CamlabInputError
         Fewer than 4 points, different counts, K not intrinsics, an unknown method.
     DegenerateError
-        The points are collinear, or the method does not fit the points.
+        The points are collinear, the method does not fit the points, or the refined pose puts
+        points behind the camera.
 
     Examples
     --------
@@ -459,6 +484,13 @@ def solve_pnp(
     lm = levenberg_marquardt(residuals, x0, jacobian, update=_update, ftol=1e-15, xtol=1e-14)
     rvec, t = lm.x[:3], lm.x[3:]
     R = rotation_from_axis_angle(rvec)
+    behind = int(np.sum(X @ R[2] + t[2] <= 0))
+    if behind:
+        raise DegenerateError(
+            f"image_points: no pose in front of the camera fits these points ({used!r} start, "
+            f"refined to a pose with {behind} of {len(X)} points behind the camera); check that "
+            "object_points and image_points are in the same order and the units agree"
+        )
     reproj = project_pose(Km, R, t, X)
     if np.any(d):
         reproj = distort_pixels(reproj, Km, d)

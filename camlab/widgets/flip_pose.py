@@ -152,7 +152,7 @@ def _readout(p: SimpleNamespace, name: str, n: int) -> str:
         f"gap = half the two reprojections' distance = {p.gap:.1f} σ\n"
         f"the flipped pose fits better with chance {chance} by the rule Φ(−gap)\n"
         "  (the rule's estimate; optimistic near head-on, section 2b)\n"
-        f"the two poses differ by a {p.dR:.0f}° rotation and put the camera {p.dC:.0f} mm apart,\n"
+        f"the two poses differ by a rotation of {p.dR:.0f}° and put the camera {p.dC:.0f} mm apart,\n"
         f"while the target's corners in the image move by at most {p.largest:.2f} px"
     )
 
