@@ -621,7 +621,7 @@ def _multiband(
         out = cv2.pyrUp(out, dstsize=(acc[lv].shape[1], acc[lv].shape[0])).reshape(acc[lv].shape)
         out += acc[lv]
     np.clip(out, 0, 1, out=out)
-    np.multiply(out, union[..., None], out=out)  # 0 outside the union (as out[~union] = 0, 20x faster)
+    np.multiply(out, union[..., None], out=out)  # 0 outside the union: out[~union] = 0, 20x faster
     return out
 
 
