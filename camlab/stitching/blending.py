@@ -31,6 +31,15 @@ def _over_channels(op, image: np.ndarray) -> np.ndarray:
     return out
 
 
+def _per_channel(op, image: np.ndarray, other: np.ndarray) -> None:
+    """``op(image, other[..., None], out=image)`` (np.multiply, np.divide) for an (h, w, C) image.
+
+    One channel at a time: numpy runs the broadcast over a short last axis 2-4x slower.
+    """
+    for c in range(image.shape[2]):
+        op(image[..., c], other, out=image[..., c])
+
+
 def gains_from_overlaps(
     N: ArrayLike, I_mean: ArrayLike, sigma_n: float = 10.0 / 255, sigma_g: float = 1.0
 ) -> np.ndarray:
@@ -272,10 +281,10 @@ def dp_seam_masks(warped: WarpedImages, megapixels: float = 0.1) -> list[np.ndar
             )
             take = ov[box] & (left if k_left else ~left)
             label[box][take] = k
-            comp[box][take] = b[take]
+            np.copyto(comp[box], b, where=take[..., None])
         fresh = m & ~placed
         label[fresh] = k
-        comp[fresh] = im[fresh]
+        np.copyto(comp, im, where=fresh[..., None])  # comp[fresh] = im[fresh], 2x faster
     # back to full resolution, box by box: each pixel takes its nearest coarse label
     near_r = np.minimum((np.arange(h) + step // 2) // step, label.shape[0] - 1)
     near_c = np.minimum((np.arange(w) + step // 2) // step, label.shape[1] - 1)
@@ -609,19 +618,19 @@ def _multiband(
                 np.subtract(g[lv], band, out=band)
             else:
                 band = g[levels]
-            band *= mk[lv][..., None]
+            _per_channel(np.multiply, band, mk[lv])
             oy, ox = y0 >> lv, x0 >> lv
             hh, ww = mk[lv].shape
             acc[lv][oy : oy + hh, ox : ox + ww] += band
             wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
     for a, s in zip(acc, wsum, strict=True):  # each band's weighted mean, in place
-        np.divide(a, np.maximum(s, 1e-6)[..., None], out=a)
+        _per_channel(np.divide, a, np.maximum(s, 1e-6))
     out = acc[-1]
     for lv in range(levels - 1, -1, -1):
         out = cv2.pyrUp(out, dstsize=(acc[lv].shape[1], acc[lv].shape[0])).reshape(acc[lv].shape)
         out += acc[lv]
     np.clip(out, 0, 1, out=out)
-    np.multiply(out, union[..., None], out=out)  # 0 outside the union: out[~union] = 0, 20x faster
+    _per_channel(np.multiply, out, union)  # 0 outside the union (out[~union] = 0 is 4x slower)
     return out
 
 
