@@ -349,6 +349,32 @@ def test_seam_step_known_answer():
     assert st.seam_step(img, seam, np.zeros((10, 20), bool)) == 0.0
 
 
+def _cheapest_paths(cost: np.ndarray) -> tuple[float, list]:
+    """Every top-to-bottom path (steps -1, 0, +1), enumerated: the least cost and the paths reaching it."""
+    h, w = cost.shape
+    paths = [[c] for c in range(w)]
+    for _ in range(1, h):
+        paths = [p + [p[-1] + d] for p in paths for d in (-1, 0, 1) if 0 <= p[-1] + d < w]
+    costs = [float(cost[np.arange(h), p].sum()) for p in paths]
+    best = min(costs)
+    return best, [p for p, c in zip(paths, costs, strict=True) if c == best]
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_seam_path_is_a_cheapest_path(seed):
+    """dp_seam_masks' dynamic programme finds a cheapest path, as exhaustive search does (ties included:
+    small integer costs, and 1e6 for pixels outside the overlap)."""
+    from camlab.stitching.blending import _seam_path
+
+    rng = np.random.default_rng(seed)
+    cost = rng.integers(0, 3, (6, 5)).astype(np.float32)
+    cost[rng.random(cost.shape) < 0.2] = 1e6
+    path = _seam_path(cost)
+    best, cheapest = _cheapest_paths(cost)
+    assert np.all(np.abs(np.diff(path)) <= 1) and np.all((path >= 0) & (path < cost.shape[1]))
+    assert float(cost[np.arange(6), path].sum()) == best and path.tolist() in cheapest
+
+
 def test_cylindrical_stitch_with_a_known_or_estimated_focal(half):
     r = st.stitch(half.images, projection="cylindrical", K=half.K, max_features=1500)
     assert r.unconnected == [] and r.projection == "cylindrical" and r.homographies == [None] * 4

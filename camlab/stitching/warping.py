@@ -166,6 +166,13 @@ class WarpedImages:
         return SubsampledCanvas(imgs, masks)
 
 
+def _inside(weight: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    """A warped float32 feather ``weight`` made at least 1e-3 inside ``mask`` and 0 outside, in place."""
+    np.maximum(weight, np.float32(1e-3), out=weight)
+    np.multiply(weight, mask, out=weight)
+    return weight
+
+
 def _image_box(
     H: np.ndarray, image_shape: Sequence[int], shape: tuple[int, int]
 ) -> tuple[int, int, int, int]:
@@ -239,7 +246,7 @@ def warp_images(
         wgt = warp_perspective(feather_weights(im.shape).astype(np.float32), Hb, size, method="cv2")
         ones = np.ones(im.shape[:2], np.float32)
         mask = warp_perspective(ones, Hb, size, interpolation="nearest", method="cv2") > 0.5
-        wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
+        wgt = _inside(wgt, mask)
         out_i.append(wimg)
         out_m.append(mask)
         out_w.append(wgt)
@@ -276,7 +283,7 @@ def warp_images_by_rotation(
         patch, mask, wgt = warp_by_rotation(
             im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32)
         )
-        wgt = np.where(mask, np.maximum(wgt, 1e-3), 0).astype(np.float32)
+        wgt = _inside(wgt, mask)
         r0, r1, c0, c1 = box
         if c0 < 0 or c1 > w:
             cols = np.arange(c0, c1) % w
