@@ -150,7 +150,9 @@ def test_the_3d_projection_is_mplot3d_s(demo):
             rng.uniform(-1.3, 4.5, CASES),
         ]
     )
-    js = run_js([("pinholePixels", [scene["M"], scene["toPixels"], x.tolist()]) for x in X], PINHOLE)
+    js = run_js(
+        [("pinholePixels", [scene["M"], scene["toPixels"], x.tolist()]) for x in X], PINHOLE
+    )
     ax3 = demo.figure.axes[0]
     xs, ys, zs = proj3d.proj_transform(X[:, 2], -X[:, 0], -X[:, 1], ax3.get_proj())
     uv = np.column_stack([xs, ys, np.ones(len(xs))]) @ np.asarray(to_canvas_pixels(ax3)).T

@@ -60,7 +60,20 @@ def haloed_line_style(line: Any, px_per_point: float) -> dict:
 
 
 def halo_style(artist: Any, px_per_point: float) -> dict:
-    """An artist's ``palette.halo`` (its one ``withStroke``) as ``halo`` (colour) and ``haloWidth`` (px)."""
+    """An artist's ``palette.halo`` (its one ``withStroke``) as ``halo`` (colour) and ``haloWidth`` (px).
+
+    Parameters
+    ----------
+    artist : matplotlib.artist.Artist
+        A line or text drawn with one ``withStroke`` path effect.
+    px_per_point : float
+        Canvas pixels per typographic point (the figure's dpi / 72).
+
+    Returns
+    -------
+    dict
+        ``halo`` (hex colour) and ``haloWidth`` (canvas pixels).
+    """
     stroke = artist.get_path_effects()[0]._gc  # noqa: SLF001 - withStroke keeps its linewidth and foreground here
     return dict(
         halo=to_hex(stroke["foreground"]), haloWidth=float(stroke["linewidth"]) * px_per_point
