@@ -247,14 +247,7 @@ def pinhole_projection():
             f"image planes at {scale:.1f} f from the pinhole (black dot),"
             f" their sensor frames {scale:.1f} x enlarged"
         )
-        wider = f", wider than the image ({SIZE[0]} px)" if span > SIZE[0] else ""
-        readout.value = monospace(
-            f"fx = f / pixel pitch = {K[0, 0]:.0f} px\n"
-            f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
-            f"box spans {span:.0f} px (the bar under the box){wider}\n"
-            f"3-D view: image planes at {scale:.1f} f, sensor frames {scale:.1f} x enlarged\n"
-            f"wall of 1 m squares at {fixtures.WALL_DISTANCE:g} m (beyond the 3-D view)"
-        )
+        readout.value = _projection_readout(K[0, 0], fov, span, scale)
 
     demo = build_demo(
         "pinhole_projection",
@@ -264,8 +257,28 @@ def pinhole_projection():
         title="Pinhole projection x = f X / Z",
         extra=[readout],
     )
-    # the browser draws the moves: the 3-D view from optics.pinhole_view's twin, the image rendered
-    # from the same textured planes as camlab.render.render renders it
+    _publish_pinhole_scene(view, demo, parts)
+    return demo
+
+
+def _projection_readout(fx: float, fov: float, span: float, scale: float) -> str:
+    """The numbers beside :func:`pinhole_projection`'s sliders (fx px, field of view deg, box px, 3-D scale)."""
+    wider = f", wider than the image ({SIZE[0]} px)" if span > SIZE[0] else ""
+    return monospace(
+        f"fx = f / pixel pitch = {fx:.0f} px\n"
+        f"field of view 2 atan(w / 2f) = {fov:.1f} deg (w = 36 mm)\n"
+        f"box spans {span:.0f} px (the bar under the box){wider}\n"
+        f"3-D view: image planes at {scale:.1f} f, sensor frames {scale:.1f} x enlarged\n"
+        f"wall of 1 m squares at {fixtures.WALL_DISTANCE:g} m (beyond the 3-D view)"
+    )
+
+
+def _publish_pinhole_scene(view, demo, parts) -> None:
+    """Send :func:`pinhole_projection`'s scene to the browser once.
+
+    The browser draws the moves: the 3-D view from optics.pinhole_view's twin, the image rendered
+    from the same textured planes as camlab.render.render renders it.
+    """
     faces, wall = fixtures.box_before_wall(1.0)  # the browser moves the box from 1 m to Z
     view.publish(
         demo,
@@ -285,7 +298,6 @@ def pinhole_projection():
             ),
         ),
     )
-    return demo
 
 
 def _signed(x: float, digits: int) -> str:

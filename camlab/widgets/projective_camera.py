@@ -13,14 +13,18 @@ from types import SimpleNamespace
 
 import ipywidgets as W
 import numpy as np
-from matplotlib.ticker import MaxNLocator
 
 from .. import camera as cm
 from .. import fixtures, scenes
 from ..plotting import palette, scene3d
 from ._base import FigureView, build_demo, register, slider
 from ._resection import k_readout as k_readout  # re-exported: it lived here
-from ._resection import place_camera_labels, resection_readout
+from ._resection import (
+    place_camera_labels,
+    resection_readout,
+    residual_bars,
+    show_residual_bars,
+)
 from .browser import BrowserView
 from .browser.camera_scenes import camera_explorer_scene, opencv_vs_opengl_scene
 from .controls import int_slider
@@ -350,7 +354,7 @@ def _show_estimate(art, trial, K, R, t, C, ringed, first_pixels):
     art.reproj.set_data(r[:, 0], r[:, 1])
     art.residuals.set_data(*_segments_xy(uvn, r))
     scene3d.update_segments(art.est_lines, cm.project_segments(P, art.frame))
-    _show_residual_bars(art.bars, trial.errors, ringed)
+    show_residual_bars(art.bars, trial.errors, ringed)
     return centre_err, far
 
 
@@ -425,89 +429,6 @@ def _resectioning_key(view):
         fontsize=8,
         frameon=False,
     )
-
-
-def _residual_bars(ax):
-    """The residual panel of :func:`resectioning`: one bar per pair, its length |o - +| in pixels.
-
-    Bar i stands at (i + 0.5) / N across; the vertical axis is in pixels, from 0 to 1.32 times the
-    longest residual but never less than 1.32 px, so round-off (sigma = 0) stays flat. That axis
-    changes with the data, so it is animated with the bars (a static one would go stale in live
-    frames). The two longest bars are labelled with their lengths and pair numbers; the moved or
-    ringed pairs' bars are black.
-    """
-    ax.set(xlim=(0.0, 1.0), ylim=(0.0, 1.32), xticks=[])
-    ax.set_title("residual of each pair\n(o to +), to scale", fontsize=9)
-    ax.set_xlabel("pairs 0 .. N - 1", fontsize=8)
-    ax.set_ylabel("px", fontsize=8, labelpad=1)
-    ax.tick_params(axis="y", labelsize=7, pad=1)
-    ax.yaxis.set_major_locator(MaxNLocator(nbins=3, steps=[1, 2, 2.5, 5, 10]))
-    for side in ("top", "right"):
-        ax.spines[side].set_visible(False)
-    bar = dict(solid_capstyle="butt", lw=4.0)
-    (innocent,) = ax.plot([], [], color=palette.ORANGE, **bar)
-    (ringed,) = ax.plot([], [], color="k", **bar)
-    labels = [
-        ax.text(0, 0, "", fontsize=8, ha="center", va="bottom", path_effects=palette.halo())
-        for _ in range(2)
-    ]
-    return SimpleNamespace(
-        ax=ax,
-        innocent=innocent,
-        ringed=ringed,
-        labels=labels,
-        artists=[ax.yaxis, ax.spines["left"], innocent, ringed, *labels],
-    )
-
-
-RESIDUAL_FLOOR_PX = (
-    1.0  # the bar panel's axis reaches at least 1.32 px: round-off is not drawn full height
-)
-
-
-def _show_residual_bars(bars, err, ringed) -> list[tuple[int, float]]:
-    """Draw the residuals ``err`` (px) as bars, ``ringed`` pairs black; return the two longest (pair, px).
-
-    Bars of points behind the estimate (NaN residual) are left out. When the two longest bars stand
-    close, one label over the taller names both, longest first.
-    """
-    err = np.asarray(err, dtype=float)
-    n = len(err)
-    finite = np.isfinite(err)
-    top = max(float(err[finite].max()) if finite.any() else 0.0, RESIDUAL_FLOOR_PX)
-    bars.ax.set_ylim(0.0, 1.32 * top)
-    height = np.where(finite, err, 0.0)
-    x = (np.arange(n) + 0.5) / n
-    width = min(
-        6.0, max(1.0, 0.55 * bars.ax.get_window_extent().width / n * 72 / bars.ax.figure.dpi)
-    )
-    black = np.zeros(n, dtype=bool)
-    black[list(ringed)] = True
-    for line, keep in ((bars.innocent, ~black), (bars.ringed, black)):
-        xs = np.repeat(x[keep], 3)
-        ys = np.column_stack(
-            [np.zeros(keep.sum()), height[keep], np.full(keep.sum(), np.nan)]
-        ).ravel()
-        line.set_data(xs, ys)
-        line.set_linewidth(width)
-    order = [int(i) for i in np.argsort(np.where(finite, err, -1.0))[::-1][:2] if finite[i]]
-    labelled = [i for i in order if err[i] >= 0.05]  # round-off (sigma = 0) gets no "0.0 px" labels
-    for text in bars.labels:
-        text.set_text("")
-    close = len(labelled) == 2 and abs(x[labelled[1]] - x[labelled[0]]) < 0.3
-    groups = [labelled] if close else [[i] for i in labelled]
-    for text, group in zip(bars.labels, groups, strict=False):
-        i = group[
-            0
-        ]  # over the longest bar of the group, a bar near either end taking its label inwards
-        ha = "left" if x[i] < 0.25 else "right" if x[i] > 0.75 else "center"
-        words = (
-            "\n".join(f"pair {k}: {err[k]:.1f} px" for k in group)
-            if close
-            else f"{err[i]:.1f} px\npair {i}"
-        )
-        text.set(position=(x[i], height[i] + 0.02 * top), text=words, ha=ha)
-    return [(i, float(err[i])) for i in order]
 
 
 def _resectioning_cameras(view, cam, frame):
@@ -641,7 +562,7 @@ def _resectioning_figure(view):
     # The image's frame over the lines that run off its edges, live as in a full draw (a live frame drew the
     # box's lines over a static top spine: 113 pixels differed from the first draw)
     frame_spines = list(sv.ax_image.spines.values())
-    bars = _residual_bars(ax_bars)
+    bars = residual_bars(ax_bars)
     _resectioning_key(view)
     info = W.HTML()  # numbers beside the figure: text outside the canvas costs no redraw time
     # Registered in the order they were created (the true camera's view first), so a live frame stacks

@@ -35,6 +35,21 @@ from ..controls import log_slider, monospace
 MATCH_STRIDE = 4  # feature_matches draws 1 in 4 matches of each kind, at every setting
 
 
+def _dropped_match_lines(ax) -> tuple[LineCollection, LineCollection]:
+    """The mutual check's dropped matches: mid-grey dashes over a dashed black rim, both empty at first.
+
+    The rim is a dashed line of its own, each dash 1 pt longer at both ends than the grey one's
+    12.5 pt (a halo's dashes would scale with its width and fill the gaps black).
+    """
+    rim = LineCollection(
+        [], colors="black", linewidths=4.5, linestyles=(1 / 4.5, (14.5 / 4.5, 3 / 4.5)), zorder=2.5
+    )
+    dropped = LineCollection([], colors="0.6", linewidths=2.5, linestyles=(0, (5, 2)), zorder=2.5)
+    ax.add_collection(rim)
+    ax.add_collection(dropped)
+    return rim, dropped
+
+
 @register(
     lesson="09",
     sweep={"ratio": [0.6, 0.8, 0.95, 1.0], "mutual": [True, False], "keypoints": [True, False]},
@@ -77,14 +92,7 @@ def feature_matches() -> Demo:
     # dashes on a black rim (grey at display size over any photo), the matches the mutual check drops
     # (a handful: none may hide under the green bundle)
     art["good"].set_zorder(2.2)
-    # the black rim is a dashed line of its own, each dash 1 pt longer at both ends than the grey
-    # one's 12.5 pt (a halo's dashes would scale with its width and fill the gaps black)
-    rim = LineCollection(
-        [], colors="black", linewidths=4.5, linestyles=(1 / 4.5, (14.5 / 4.5, 3 / 4.5)), zorder=2.5
-    )
-    dropped = LineCollection([], colors="0.6", linewidths=2.5, linestyles=(0, (5, 2)), zorder=2.5)
-    ax.add_collection(rim)
-    ax.add_collection(dropped)
+    rim, dropped = _dropped_match_lines(ax)
     view.animate(rim, dropped, art["bad"], art["good"])
     kps = [
         draw_keypoints(
