@@ -40,7 +40,7 @@ so :func:`solve_pnp` starts from a closed-form estimate and polishes it:
   :math:`\partial X_c / \partial \delta\omega = -[X_c - t]_\times` and
   :math:`\partial X_c / \partial \delta t = I`; the chain rule through
   :math:`u = f_x x_c / z_c + s\,y_c/z_c + c_x`, :math:`v = f_y y_c / z_c + c_y` gives the 2 x 6
-  Jacobian of each point (H&Z section 8 for the camera's derivatives).
+  Jacobian of each point (H&Z section 6.1, the finite camera, and appendix A6, iterative estimation).
 
 With distortion the measured pixels are first undistorted (:func:`camlab.distortion.
 undistort_pixels`) and the pinhole problem is solved on the ideal pixels; the residuals and the
