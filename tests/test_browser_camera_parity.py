@@ -32,7 +32,10 @@ def _axes3d():
 
 
 def test_the_3d_projection_equals_matplotlibs_get_proj():
-    assert tuple(int(v) for v in matplotlib.__version__.split(".")[:2]) >= (3, 10)
+    if tuple(int(v) for v in matplotlib.__version__.split(".")[:2]) < (3, 10):
+        pytest.skip(
+            "view3d.js's axesProjection twins matplotlib 3.10's Axes3D.get_proj; 3.9's differs"
+        )
     rng = np.random.default_rng(40)
     ax = _axes3d()
     calls, want = [], []
