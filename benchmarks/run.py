@@ -1,5 +1,5 @@
-"""Every benchmark in one run: demo latency (ipympl path and real browser), import time, and
-camlab-versus-OpenCV speed ratios.
+"""Every benchmark in one run: demo latency (ipympl path and real browser), import time,
+camlab-versus-OpenCV speed ratios, and the lessons' wall time under nbval (lesson_times.py).
 
 Each `benchmarks/speed_<topic>.py` provides `rows()` returning dicts with case, camlab_ms,
 opencv_ms, ratio, target and ok; this script prints them all as tables.
@@ -15,6 +15,7 @@ HERE = Path(__file__).parent
 sys.path.insert(0, str(HERE))
 
 import latency  # noqa: E402
+import lesson_times  # noqa: E402
 from _timing import print_table  # noqa: E402
 
 
@@ -32,6 +33,7 @@ def main() -> int:
         failed += [f"{path.stem}: {r['case']}" for r in rows if not r["ok"]]
     if failed:
         print("\nMissed targets:\n- " + "\n- ".join(failed))
+    lesson_times.main([])  # last: 3 runs of every lesson, a few minutes
     return 0
 
 

@@ -168,11 +168,17 @@ def matching_cost(
         raise CamlabInputError(
             f"u, v: expected a pixel inside the {w} x {h} image, got ({u!r}, {v!r})"
         )
-    count = box_sum(np.ones((h, w)), b)
+    r, u, v = b // 2, int(u), int(v)
+    # the window means need the images only r beyond the windows compared (leftmost: at the largest d):
+    # cropped to that, one pixel's curve costs its neighbourhood, not the whole image
+    r0, c0 = max(v - 2 * r, 0), max(u - D - 2 * r, 0)
+    crop = (slice(r0, v + 2 * r + 1), slice(c0, u + 2 * r + 1 + max(-int(min_disparity), 0)))
+    L, R = L[crop], R[crop]
+    count = box_sum(np.ones(L.shape), b)
     Lz = L - box_sum(L, b) / count
     Rz = R - box_sum(R, b) / count
-    r, u, v = b // 2, int(u), int(v)
-    rows, cols = slice(max(v - r, 0), v + r + 1), np.arange(max(u - r, 0), min(u + r + 1, w))
+    rows = slice(max(v - r, 0) - r0, v + r + 1 - r0)
+    cols = np.arange(max(u - r, 0), min(u + r + 1, w)) - c0
     ds = np.arange(int(min_disparity), D + 1)
     cost = np.full(len(ds), np.inf)
     for k, d in enumerate(ds):

@@ -344,8 +344,9 @@ def newton_undistort(
             res = np.abs(_distort(x, d) - target).max(axis=1)
     res = np.where(np.isfinite(res), res, np.inf)
     # a root beyond the fold (slope of r L(r) <= 0) is not the physical inverse either
+    r_fold = _valid_radius(tuple(d.tolist()))  # cached: PnP and Monte Carlo loops reuse one dist
     with np.errstate(over="ignore", invalid="ignore"):
-        beyond = np.hypot(x[:, 0], x[:, 1]) > max_valid_radius(d)
+        beyond = np.hypot(x[:, 0], x[:, 1]) > r_fold
     res[beyond] = np.inf
     return NewtonUndistort(x, res)
 

@@ -497,6 +497,25 @@ def test_loaders_and_truth():
         sd.load_panorama_set("/nonexistent")
 
 
+def test_warp_images_onto_a_given_frame(half):
+    """shape=: image 1 warped into image 0's own frame is the full canvas cropped to image 0's box."""
+    imgs = st.prepare_images(half.images[:2])
+    H = half.true_homography(1, 0)
+    full = st.warp_images(imgs, [np.eye(3), H])
+    own = st.warp_images(imgs, [np.eye(3), H], shape=imgs[0].shape[:2])
+    h, w = imgs[0].shape[:2]
+    c0, r0 = full.T[:2, 2].astype(int)  # image 0's corner on the full canvas
+    crop = [a[r0 : r0 + h, c0 : c0 + w] for a in (full.images[1], full.masks[1])]
+    assert own.shape == (h, w) and np.array_equal(own.T, np.eye(3))
+    assert np.array_equal(own.images[0], imgs[0]) and own.masks[0].all()
+    # the same footprint and samples, to float rounding (the two warps compose different translations)
+    assert (own.masks[1] != crop[1]).sum() <= 0.001 * h * w and own.masks[1].sum() > 0.3 * h * w
+    both = own.masks[1] & crop[1]
+    assert np.abs(own.images[1][both] - crop[0][both]).max() < 1e-3
+    with pytest.raises(CamlabInputError, match="shape: expected"):
+        st.warp_images(imgs, [np.eye(3), H], shape=(240, 0))
+
+
 def test_warp_images_bad_input():
     with pytest.raises(
         CamlabInputError,

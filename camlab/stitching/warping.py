@@ -189,11 +189,15 @@ def warp_images(
     homographies: Sequence[np.ndarray],
     *,
     max_pixels: int = 40_000_000,
+    shape: tuple[int, int] | None = None,
 ) -> WarpedImages:
     """Warp every image onto the panorama canvas (bounds from all warped corners, one translation).
 
     Each image is warped only into its own box of the canvas (the bounding box of its
     warped corners): ``T_box @ T @ H`` with ``T_box`` the translation to the box's corner.
+    With ``shape`` given, the canvas is that frame instead (T the identity), and what falls
+    outside it is cut off: e.g. one photo warped into another's own frame, where their
+    overlap lies, when a canvas holding all of it would be huge (a corner far out).
 
     Parameters
     ----------
@@ -203,6 +207,9 @@ def warp_images(
         reference_from_image for each image (from :func:`match_graph`).
     max_pixels : int
         The largest canvas allowed (:func:`camlab.warp.canvas_bounds`).
+    shape : (h, w), optional
+        The canvas to warp onto, with ``homographies`` already canvas_from_image. Default:
+        the canvas that holds every image whole.
 
     Returns
     -------
@@ -228,7 +235,12 @@ def warp_images(
             )
     import cv2
 
-    T, shape = canvas_bounds(list(homographies), [im.shape for im in images], max_pixels=max_pixels)
+    if shape is None:
+        T, shape = canvas_bounds(
+            list(homographies), [im.shape for im in images], max_pixels=max_pixels
+        )
+    else:
+        T, shape = np.eye(3), check_shape(shape)
     out_i, out_m, out_w, out_h, boxes = [], [], [], [], []
     for im, H in zip(images, homographies, strict=True):
         Hc = _hg.normalise_homography(T @ np.asarray(H, dtype=float))
