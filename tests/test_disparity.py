@@ -116,3 +116,21 @@ def test_matching_cost_is_the_block_matchers_cost_curve():
     assert np.isinf(dp.matching_cost(hs.left, hs.right, 3, 50, 44, 5)[1][-1])
     with pytest.raises(CamlabInputError, match="u, v"):
         dp.matching_cost(hs.left, hs.right, -1, 50, 44, 5)
+
+
+def test_matching_cost_crop_is_the_whole_image_prefilter():
+    """matching_cost prefilters only around its pixel: the curve of the whole images' prefilter, at the borders too."""
+    from camlab.fixtures.stereo import half_size_rectification
+
+    hs = half_size_rectification()
+    L, R = (np.asarray(im, np.float32) for im in (hs.left, hs.right))  # grey, as matching_cost reads them
+    h, w = L.shape
+    count = dp.box_sum(np.ones((h, w)), 5)
+    Lz, Rz = (a - dp.box_sum(a, 5) / count for a in (L, R))
+    for u, v in [(200, 120), (60, 0), (w - 1, h - 1), (47, 1), (120, h - 3)]:
+        ds, c = dp.matching_cost(hs.left, hs.right, u, v, 44, 5, min_disparity=3)
+        rows, cols = slice(max(v - 2, 0), v + 3), np.arange(max(u - 2, 0), min(u + 3, w))
+        ref = [
+            np.abs(Lz[rows, cols] - Rz[rows, cols - d]).sum() if u >= d + 2 else np.inf for d in ds
+        ]
+        assert np.allclose(c, ref, rtol=1e-9, atol=1e-9) and np.isfinite(c).any()
