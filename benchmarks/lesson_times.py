@@ -1,13 +1,15 @@
 """The lessons headless, as the test suite runs them: nbval with 2 workers, wall time per run.
 
-Run: ``python benchmarks/lesson_times.py [--runs 3] [--workers 2] [--slowest 15] [lessons ...]``.
-Each run is ``pytest -n 2 --dist loadfile --nbval-lax lessons/ --durations=0`` in a fresh
-process (one lesson per worker at a time, as ``make test`` runs them), with this checkout's
-camlab first on ``PYTHONPATH`` and one BLAS thread per process (as the Makefile sets). It
-prints the load average before each run (the machine is shared: a busy machine slows every
-cell), each run's wall time and their median against issue 32's target, then, as medians over
-the runs, each lesson's sum of cell times and the slowest cells (nbval's "Cell N" counts code
-cells only). Not a timed test: a benchmark to read.
+Run: ``python benchmarks/lesson_times.py [--runs 3] [--workers 2] [--slowest 15] [--repo DIR]
+[lessons ...]``. Each run is ``pytest -n 2 --dist loadfile --nbval-lax lessons/ --durations=0``
+in a fresh process (one lesson per worker at a time, as ``make test`` runs them), with the
+checkout's camlab first on ``PYTHONPATH`` and one BLAS thread per process (as the Makefile
+sets). ``--repo`` runs another checkout's lessons with its camlab: alternate two branches to
+compare them under the same machine load. The script prints the load average before each run
+(the machine is shared: a busy machine slows every cell), each run's wall time and their
+median against issue 32's target, then, as medians over the runs, each lesson's sum of cell
+times and the slowest cells (nbval's "Cell N" counts code cells only). Not a timed test: a
+benchmark to read.
 """
 
 from __future__ import annotations
@@ -34,14 +36,14 @@ TARGET_S = 60.0  # issue 32: the 13 lessons under nbval with 2 workers in <= 60 
 DURATION = re.compile(r"^([\d.]+)s (setup|call|teardown)\s+(\S+\.ipynb)::(Cell \d+)")
 
 
-def one_run(lessons: list[str], workers: int) -> tuple[float, dict, str]:
+def one_run(lessons: list[str], workers: int, repo: Path = REPO) -> tuple[float, dict, str]:
     """One nbval run: (wall seconds, {(lesson, cell): seconds of setup + call + teardown}, pytest's summary line)."""
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
-    env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(REPO), env.get("PYTHONPATH")]))
+    env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(repo), env.get("PYTHONPATH")]))
     cmd = [sys.executable, "-m", "pytest", "-q", "-n", str(workers), "--dist", "loadfile",
            "-p", "no:randomly", "-p", "no:cacheprovider", "--nbval-lax", "--durations=0", *lessons]  # fmt: skip
     t0 = time.perf_counter()
-    out = subprocess.run(cmd, cwd=REPO, env=env, capture_output=True, text=True).stdout
+    out = subprocess.run(cmd, cwd=repo, env=env, capture_output=True, text=True).stdout
     wall = time.perf_counter() - t0
     cells: dict = defaultdict(float)
     for line in out.splitlines():
@@ -61,12 +63,15 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--slowest", type=int, default=15, help="how many of the slowest cells to list")
+    ap.add_argument(
+        "--repo", type=Path, default=REPO, help="the checkout to run (default: this one)"
+    )
     args = ap.parse_args(argv)
 
     walls, runs, rows = [], [], []
     for k in range(args.runs):
         load = os.getloadavg()[0]
-        wall, cells, summary = one_run(args.lessons, args.workers)
+        wall, cells, summary = one_run(args.lessons, args.workers, args.repo.resolve())
         walls.append(wall)
         runs.append(cells)
         rows.append({"run": k + 1, "load_before": load, "wall_s": wall, "pytest": summary})
@@ -81,7 +86,7 @@ def main(argv: list[str] | None = None) -> int:
     print_table(
         rows,
         ["run", "load_before", "wall_s", "pytest"],
-        f"lessons under nbval, {args.workers} workers",
+        f"{args.repo.resolve().name}: the lessons under nbval, {args.workers} workers",
     )
 
     keys = sorted(set().union(*runs))
