@@ -169,8 +169,8 @@ def matching_cost(
             f"u, v: expected a pixel inside the {w} x {h} image, got ({u!r}, {v!r})"
         )
     r, u, v = b // 2, int(u), int(v)
-    # the window means need the images only r beyond the windows compared (leftmost: at the largest d):
-    # cropped to that, one pixel's curve costs its neighbourhood, not the whole image
+    # the window means need the images only r beyond the windows compared (the leftmost at the
+    # largest d): cropped to that, one pixel's curve costs its neighbourhood, not the whole image
     r0, c0 = max(v - 2 * r, 0), max(u - D - 2 * r, 0)
     crop = (slice(r0, v + 2 * r + 1), slice(c0, u + 2 * r + 1 + max(-int(min_disparity), 0)))
     L, R = L[crop], R[crop]

@@ -219,9 +219,11 @@ def warp_images(
     Raises
     ------
     CamlabInputError
-        Not one homography per image, or an image that is not (h, w, 3) or (h, w, 1).
+        Not one homography per image, an image that is not (h, w, 3) or (h, w, 1), or a
+        ``shape`` that is not (h, w) in whole pixels.
     DegenerateError
-        The canvas would exceed ``max_pixels`` (:func:`camlab.warp.canvas_bounds`).
+        The canvas would exceed ``max_pixels`` (:func:`camlab.warp.canvas_bounds`; not
+        checked with ``shape`` given).
     """
     if len(images) != len(homographies) or not images:
         raise CamlabInputError(
