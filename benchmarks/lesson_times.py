@@ -7,9 +7,9 @@ checkout's camlab first on ``PYTHONPATH`` and one BLAS thread per process (as th
 sets). ``--repo`` runs another checkout's lessons with its camlab: alternate two branches to
 compare them under the same machine load. The script prints the load average before each run
 (the machine is shared: a busy machine slows every cell), each run's wall time and their
-median against issue 32's target, then, as medians over the runs, each lesson's sum of cell
-times and the slowest cells (nbval's "Cell N" counts code cells only). Not a timed test: a
-benchmark to read.
+median against issue 32's target, and the CPU seconds of all the run's processes (less moved
+by the load); then, as medians over the runs, each lesson's sum of cell times and the slowest
+cells (nbval's "Cell N" counts code cells only). Not a timed test: a benchmark to read.
 """
 
 from __future__ import annotations
@@ -17,6 +17,7 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import resource
 import subprocess
 import sys
 import time
@@ -36,15 +37,19 @@ TARGET_S = 60.0  # issue 32: the 13 lessons under nbval with 2 workers in <= 60 
 DURATION = re.compile(r"^([\d.]+)s (setup|call|teardown)\s+(\S+\.ipynb)::(Cell \d+)")
 
 
-def one_run(lessons: list[str], workers: int, repo: Path = REPO) -> tuple[float, dict, str]:
-    """One nbval run: (wall seconds, {(lesson, cell): seconds of setup + call + teardown}, pytest's summary line)."""
+def one_run(lessons: list[str], workers: int, repo: Path = REPO) -> tuple[float, float, dict, str]:
+    """One nbval run: wall and CPU seconds, {(lesson, cell): seconds of setup + call + teardown}, pytest's summary.
+
+    The CPU seconds are every process's of the run (pytest, its workers, their kernels: all
+    waited for, so counted in RUSAGE_CHILDREN): less moved by other processes than the wall time.
+    """
     env = dict(os.environ, OPENBLAS_NUM_THREADS="1", OMP_NUM_THREADS="1", MKL_NUM_THREADS="1")
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(repo), env.get("PYTHONPATH")]))
     cmd = [sys.executable, "-m", "pytest", "-q", "-n", str(workers), "--dist", "loadfile",
            "-p", "no:randomly", "-p", "no:cacheprovider", "--nbval-lax", "--durations=0", *lessons]  # fmt: skip
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), _children_cpu()
     out = subprocess.run(cmd, cwd=repo, env=env, capture_output=True, text=True).stdout
-    wall = time.perf_counter() - t0
+    wall, cpu = time.perf_counter() - t0, _children_cpu() - c0
     cells: dict = defaultdict(float)
     for line in out.splitlines():
         if m := DURATION.match(line):
@@ -52,7 +57,12 @@ def one_run(lessons: list[str], workers: int, repo: Path = REPO) -> tuple[float,
     summary = next(
         (ln.strip("= ") for ln in reversed(out.splitlines()) if " in " in ln), "no summary"
     )
-    return wall, dict(cells), summary
+    return wall, cpu, dict(cells), summary
+
+
+def _children_cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -71,21 +81,24 @@ def main(argv: list[str] | None = None) -> int:
     walls, runs, rows = [], [], []
     for k in range(args.runs):
         load = os.getloadavg()[0]
-        wall, cells, summary = one_run(args.lessons, args.workers, args.repo.resolve())
+        wall, cpu, cells, summary = one_run(args.lessons, args.workers, args.repo.resolve())
         walls.append(wall)
         runs.append(cells)
-        rows.append({"run": k + 1, "load_before": load, "wall_s": wall, "pytest": summary})
+        rows.append(
+            {"run": k + 1, "load_before": load, "wall_s": wall, "cpu_s": cpu, "pytest": summary}
+        )
     med = float(np.median(walls))
     rows.append(
         {
             "run": "median",
             "wall_s": med,
+            "cpu_s": float(np.median([r["cpu_s"] for r in rows])),
             "pytest": f"target <= {TARGET_S:g} s: {'ok' if med <= TARGET_S else 'MISSED'}",
         }
     )
     print_table(
         rows,
-        ["run", "load_before", "wall_s", "pytest"],
+        ["run", "load_before", "wall_s", "cpu_s", "pytest"],
         f"{args.repo.resolve().name}: the lessons under nbval, {args.workers} workers",
     )
 
