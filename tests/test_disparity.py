@@ -123,9 +123,8 @@ def test_matching_cost_crop_is_the_whole_image_prefilter():
     from camlab.fixtures.stereo import half_size_rectification
 
     hs = half_size_rectification()
-    L, R = (
-        np.asarray(im, np.float32) for im in (hs.left, hs.right)
-    )  # grey, as matching_cost reads them
+    # grey uint8, read as float32 as matching_cost reads them
+    L, R = (np.asarray(im, np.float32) for im in (hs.left, hs.right))
     h, w = L.shape
     count = dp.box_sum(np.ones((h, w)), 5)
     Lz, Rz = (a - dp.box_sum(a, 5) / count for a in (L, R))
