@@ -547,6 +547,7 @@ def _multiband(
     levels: int,
     *,
     extended: bool = False,
+    gains: np.ndarray | None = None,
 ) -> np.ndarray:
     """:func:`laplacian_blend` of images given in boxes of the canvas.
 
@@ -556,7 +557,9 @@ def _multiband(
     Each image is extended beyond its footprint before its pyramid is built: by push-pull
     (:func:`_fill_outside`), or, if ``extended`` (the images already repeat their edge
     pixels outside the footprint, as :func:`warp_images` makes them), by repeating the
-    box's border pixels, as OpenCV's multi-band blender does.
+    box's border pixels, as OpenCV's multi-band blender does. ``gains`` (with ``extended``)
+    are applied to that copy as :func:`_gained` would to the whole image (the same values,
+    without a second copy of every image).
     """
     import cv2
 
@@ -574,7 +577,7 @@ def _multiband(
     # each pyrDown's 5-tap filter reaches 2 pixels of its input, 2^l full-resolution pixels at level l,
     # so after `levels` of them a seam mask reaches 2 (2^levels - 1) < 2 step pixels beyond itself
     pad = 2 * step
-    for img, m, foot, (r0, r1, c0, c1) in zip(images, masks, feet, boxes, strict=True):
+    for k, (img, m, foot, (r0, r1, c0, c1)) in enumerate(zip(images, masks, feet, boxes, strict=True)):
         if not m.any():
             continue
         union[r0:r1, c0:c1] |= m
@@ -592,14 +595,14 @@ def _multiband(
         mk0[ys, xs] = m[ps, qs]
         if extended:
             sub = cv2.copyMakeBorder(
-                np.ascontiguousarray(img[ps, qs], np.float32),
+                np.asarray(img[ps, qs], np.float32),  # OpenCV reads the strided box as it is
                 ys.start,
                 y1 - y0 - ys.stop,
                 xs.start,
                 x1 - x0 - xs.stop,
                 cv2.BORDER_REPLICATE,
             ).reshape(mk0.shape + (nch,))
-            g = [sub]
+            g = [sub if gains is None else _gained(sub, gains[k], out=sub)]
         else:
             sub = np.zeros((y1 - y0, x1 - x0, nch), np.float32)
             valid = np.zeros((y1 - y0, x1 - x0), bool)
@@ -634,9 +637,9 @@ def _multiband(
     return out
 
 
-def _gained(image: np.ndarray, gain: float) -> np.ndarray:
-    """``min(gain * image, 1)`` as float32 (image >= 0), in one new array."""
-    out = np.multiply(image, np.float32(gain))
+def _gained(image: np.ndarray, gain: float, out: np.ndarray | None = None) -> np.ndarray:
+    """``min(gain * image, 1)`` as float32 (image >= 0), in one new array or in ``out``."""
+    out = np.multiply(image, np.float32(gain), out=out)
     return np.minimum(out, np.float32(1), out=out)
 
 
@@ -700,13 +703,15 @@ def blend(
     if seam not in ("voronoi", "dp"):
         raise CamlabInputError(f"seam: expected 'voronoi' or 'dp', got {seam!r}")
     imgs = warped.patches
+    g = None
     if gains is not None:
         g = np.asarray(gains, dtype=float).ravel()
         if g.shape != (len(imgs),):
             raise CamlabInputError(
                 f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}"
             )
-        imgs = [_gained(im, gk) for im, gk in zip(imgs, g, strict=True)]
+        if method != "multiband":  # multiband applies them to its own copy of each box
+            imgs = [_gained(im, gk) for im, gk in zip(imgs, g, strict=True)]
     h, w = warped.shape
     boxes = warped.boxes
     if method == "overwrite":
@@ -739,4 +744,5 @@ def blend(
         warped.shape,
         check_integer(levels, "levels", minimum=1),
         extended=True,
+        gains=g,
     )
