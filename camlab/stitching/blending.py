@@ -577,11 +577,22 @@ def _multiband(
     # each pyrDown's 5-tap filter reaches 2 pixels of its input, 2^l full-resolution pixels at level l,
     # so after `levels` of them a seam mask reaches 2 (2^levels - 1) < 2 step pixels beyond itself
     pad = 2 * step
-    for k, (img, m, foot, (r0, r1, c0, c1)) in enumerate(zip(images, masks, feet, boxes, strict=True)):
-        if not m.any():
+    work = [
+        _seam_work_box(m, r0, c0, (h, w), step, pad) if m.any() else None
+        for m, (r0, _r1, c0, _c1) in zip(masks, boxes, strict=True)
+    ]
+    # scratch reused by every image and level (a fresh multi-megabyte array costs a page fault
+    # per page): the upsampled level of each band and of the collapse, and the bordered copy
+    up_buf = np.empty(h * w * nch, np.float32)
+    areas = [(y1 - y0) * (x1 - x0) for y0, y1, x0, x1 in filter(None, work)]
+    copy_buf = np.empty(max(areas, default=0) * nch if extended else 0, np.float32)
+    for k, (img, m, foot, (r0, r1, c0, c1)) in enumerate(
+        zip(images, masks, feet, boxes, strict=True)
+    ):
+        if work[k] is None:
             continue
         union[r0:r1, c0:c1] |= m
-        y0, y1, x0, x1 = _seam_work_box(m, r0, c0, (h, w), step, pad)
+        y0, y1, x0, x1 = work[k]
         # the image's box placed in that aligned box (each may stick out of the other)
         mk0 = np.zeros((y1 - y0, x1 - x0), np.float32)
         ys, xs = (
@@ -601,6 +612,7 @@ def _multiband(
                 xs.start,
                 x1 - x0 - xs.stop,
                 cv2.BORDER_REPLICATE,
+                dst=_view(copy_buf, mk0.shape + (nch,)),
             ).reshape(mk0.shape + (nch,))
             g = [sub if gains is None else _gained(sub, gains[k], out=sub)]
         else:
@@ -614,10 +626,8 @@ def _multiband(
             g.append(_pyr_down(g[-1]))
             mk.append(cv2.pyrDown(mk[-1]))
         for lv in range(levels + 1):
-            if lv < levels:  # band = g[lv] - up(g[lv + 1]), computed in place
-                band = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0])).reshape(
-                    g[lv].shape
-                )
+            if lv < levels:  # band = g[lv] - up(g[lv + 1])
+                band = _pyr_up(g[lv + 1], _view(up_buf, g[lv].shape))
                 np.subtract(g[lv], band, out=band)
             else:
                 band = g[levels]
@@ -628,13 +638,24 @@ def _multiband(
             wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
     for a, s in zip(acc, wsum, strict=True):  # each band's weighted mean, in place
         _per_channel(np.divide, a, np.maximum(s, 1e-6))
-    out = acc[-1]
-    for lv in range(levels - 1, -1, -1):
-        out = cv2.pyrUp(out, dstsize=(acc[lv].shape[1], acc[lv].shape[0])).reshape(acc[lv].shape)
-        out += acc[lv]
+    for lv in range(levels - 1, -1, -1):  # collapse: acc[lv] += up(acc[lv + 1])
+        acc[lv] += _pyr_up(acc[lv + 1], _view(up_buf, acc[lv].shape))
+    out = acc[0]
     np.clip(out, 0, 1, out=out)
     _per_channel(np.multiply, out, union)  # 0 outside the union (out[~union] = 0 is 4x slower)
     return out
+
+
+def _view(buffer: np.ndarray, shape: tuple) -> np.ndarray:
+    """A C-contiguous array of ``shape`` over the start of the flat scratch ``buffer``."""
+    return buffer[: int(np.prod(shape))].reshape(shape)
+
+
+def _pyr_up(image: np.ndarray, out: np.ndarray) -> np.ndarray:
+    """``cv2.pyrUp`` of an (h, w, C) image into ``out`` (its shape sets the size), channel axis kept."""
+    import cv2
+
+    return cv2.pyrUp(image, dst=out, dstsize=(out.shape[1], out.shape[0])).reshape(out.shape)
 
 
 def _gained(image: np.ndarray, gain: float, out: np.ndarray | None = None) -> np.ndarray:
