@@ -586,6 +586,7 @@ def _multiband(
     up_buf = np.empty(h * w * nch, np.float32)
     areas = [(y1 - y0) * (x1 - x0) for y0, y1, x0, x1 in filter(None, work)]
     copy_buf = np.empty(max(areas, default=0) * nch if extended else 0, np.float32)
+    mask_buf = np.empty(max(areas, default=0), np.float32)
     for k, (img, m, foot, (r0, r1, c0, c1)) in enumerate(
         zip(images, masks, feet, boxes, strict=True)
     ):
@@ -594,7 +595,8 @@ def _multiband(
         union[r0:r1, c0:c1] |= m
         y0, y1, x0, x1 = work[k]
         # the image's box placed in that aligned box (each may stick out of the other)
-        mk0 = np.zeros((y1 - y0, x1 - x0), np.float32)
+        mk0 = _view(mask_buf, (y1 - y0, x1 - x0))
+        mk0.fill(0)
         ys, xs = (
             slice(max(r0, y0) - y0, min(r1, y1) - y0),
             slice(max(c0, x0) - x0, min(c1, x1) - x0),
@@ -637,7 +639,7 @@ def _multiband(
             acc[lv][oy : oy + hh, ox : ox + ww] += band
             wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
     for a, s in zip(acc, wsum, strict=True):  # each band's weighted mean, in place
-        _per_channel(np.divide, a, np.maximum(s, 1e-6))
+        _per_channel(np.divide, a, np.maximum(s, 1e-6, out=s))
     for lv in range(levels - 1, -1, -1):  # collapse: acc[lv] += up(acc[lv + 1])
         acc[lv] += _pyr_up(acc[lv + 1], _view(up_buf, acc[lv].shape))
     out = acc[0]
