@@ -209,12 +209,15 @@ def _seam_path(cost: np.ndarray) -> np.ndarray:
     h, w = cost.shape
     E = np.full((h, w + 2), np.inf)  # one column of infinity each side: no path leaves the grid
     E[0, 1:-1] = cost[0]
-    back = np.zeros((h, w), np.int64)
     for r in range(1, h):
-        left, up, right = E[r - 1, :-2], E[r - 1, 1:-1], E[r - 1, 2:]  # from c-1, c, c+1
-        best = np.minimum(np.minimum(left, up), right)
-        back[r] = np.where(left == best, -1, np.where(up == best, 0, 1))  # ties: the leftmost
+        prev = E[r - 1]
+        best = np.minimum(np.minimum(prev[:-2], prev[1:-1]), prev[2:])  # from c-1, c, c+1
         np.add(cost[r], best, out=E[r, 1:-1])
+    # every row's step back, at once from the finished table (ties: the leftmost)
+    left, up, right = E[:-1, :-2], E[:-1, 1:-1], E[:-1, 2:]
+    best = np.minimum(np.minimum(left, up), right)
+    back = np.zeros((h, w), np.int64)
+    back[1:] = np.where(left == best, -1, np.where(up == best, 0, 1))
     E = E[:, 1:-1]
     path = np.zeros(h, np.int64)
     path[-1] = int(np.argmin(E[-1]))
