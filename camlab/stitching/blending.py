@@ -9,6 +9,7 @@ See :mod:`camlab.stitching` for the whole pipeline; every name here is re-export
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -584,12 +585,7 @@ def _multiband(
         _seam_work_box(m, r0, c0, (h, w), step, pad) if m.any() else None
         for m, (r0, _r1, c0, _c1) in zip(masks, boxes, strict=True)
     ]
-    # scratch reused by every image and level (a fresh multi-megabyte array costs a page fault
-    # per page): the upsampled level of each band and of the collapse, and the bordered copy
-    up_buf = np.empty(h * w * nch, np.float32)
-    areas = [(y1 - y0) * (x1 - x0) for y0, y1, x0, x1 in filter(None, work)]
-    copy_buf = np.empty(max(areas, default=0) * nch if extended else 0, np.float32)
-    mask_buf = np.empty(max(areas, default=0), np.float32)
+    buf = _scratch(work, (h, w), nch)
     for k, (img, m, foot, (r0, r1, c0, c1)) in enumerate(
         zip(images, masks, feet, boxes, strict=True)
     ):
@@ -598,7 +594,7 @@ def _multiband(
         union[r0:r1, c0:c1] |= m
         y0, y1, x0, x1 = work[k]
         # the image's box placed in that aligned box (each may stick out of the other)
-        mk0 = _view(mask_buf, (y1 - y0, x1 - x0))
+        mk0 = _view(buf.mask, (y1 - y0, x1 - x0))
         mk0.fill(0)
         ys, xs = (
             slice(max(r0, y0) - y0, min(r1, y1) - y0),
@@ -617,7 +613,7 @@ def _multiband(
                 xs.start,
                 x1 - x0 - xs.stop,
                 cv2.BORDER_REPLICATE,
-                dst=_view(copy_buf, mk0.shape + (nch,)),
+                dst=_view(buf.copy, mk0.shape + (nch,)),
             ).reshape(mk0.shape + (nch,))
             g = [sub if gains is None else _gained(sub, gains[k], out=sub)]
         else:
@@ -632,7 +628,7 @@ def _multiband(
             mk.append(cv2.pyrDown(mk[-1]))
         for lv in range(levels + 1):
             if lv < levels:  # band = g[lv] - up(g[lv + 1])
-                band = _pyr_up(g[lv + 1], _view(up_buf, g[lv].shape))
+                band = _pyr_up(g[lv + 1], _view(buf.up, g[lv].shape))
                 np.subtract(g[lv], band, out=band)
             else:
                 band = g[levels]
@@ -644,11 +640,31 @@ def _multiband(
     for a, s in zip(acc, wsum, strict=True):  # each band's weighted mean, in place
         _per_channel(np.divide, a, np.maximum(s, 1e-6, out=s))
     for lv in range(levels - 1, -1, -1):  # collapse: acc[lv] += up(acc[lv + 1])
-        acc[lv] += _pyr_up(acc[lv + 1], _view(up_buf, acc[lv].shape))
+        acc[lv] += _pyr_up(acc[lv + 1], _view(buf.up, acc[lv].shape))
     out = acc[0]
     np.clip(out, 0, 1, out=out)
     _per_channel(np.multiply, out, union)  # 0 outside the union (out[~union] = 0 is 4x slower)
     return out
+
+
+class _Scratch(NamedTuple):
+    """Flat float32 buffers :func:`_multiband` reuses for every image and level.
+
+    A fresh multi-megabyte array costs a page fault per page (numpy asks for huge pages from
+    4 MB, each zeroed on its first touch), so each image's arrays are views of these.
+    """
+
+    up: np.ndarray  # an upsampled level, of a band or of the collapse (up to the whole canvas)
+    copy: np.ndarray  # an image's bordered copy: level 0 of its pyramid
+    mask: np.ndarray  # its seam mask, level 0
+
+
+def _scratch(work: list, shape: tuple, nch: int) -> _Scratch:
+    """:class:`_Scratch` large enough for the canvas ``shape`` and every work box (None: skipped)."""
+    area = max(((y1 - y0) * (x1 - x0) for y0, y1, x0, x1 in filter(None, work)), default=0)
+    return _Scratch(
+        *(np.empty(n, np.float32) for n in (shape[0] * shape[1] * nch, area * nch, area))
+    )
 
 
 def _view(buffer: np.ndarray, shape: tuple) -> np.ndarray:
