@@ -626,17 +626,7 @@ def _multiband(
         for _ in range(levels):
             g.append(_pyr_down(g[-1]))
             mk.append(cv2.pyrDown(mk[-1]))
-        for lv in range(levels + 1):
-            if lv < levels:  # band = g[lv] - up(g[lv + 1])
-                band = _pyr_up(g[lv + 1], _view(buf.up, g[lv].shape))
-                np.subtract(g[lv], band, out=band)
-            else:
-                band = g[levels]
-            _per_channel(np.multiply, band, mk[lv])
-            oy, ox = y0 >> lv, x0 >> lv
-            hh, ww = mk[lv].shape
-            acc[lv][oy : oy + hh, ox : ox + ww] += band
-            wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
+        _add_bands(g, mk, acc, wsum, (y0, x0), buf.up)
     for a, s in zip(acc, wsum, strict=True):  # each band's weighted mean, in place
         _per_channel(np.divide, a, np.maximum(s, 1e-6, out=s))
     for lv in range(levels - 1, -1, -1):  # collapse: acc[lv] += up(acc[lv + 1])
@@ -645,6 +635,26 @@ def _multiband(
     np.clip(out, 0, 1, out=out)
     _per_channel(np.multiply, out, union)  # 0 outside the union (out[~union] = 0 is 4x slower)
     return out
+
+
+def _add_bands(g: list, mk: list, acc: list, wsum: list, corner: tuple, up: np.ndarray) -> None:
+    """Add one image's Laplacian bands, times its seam mask's pyramid, into ``acc`` (and the masks into ``wsum``).
+
+    ``g`` and ``mk`` are the Gaussian pyramids of the image and of its seam mask in its work box,
+    whose corner on the full-resolution canvas is ``corner`` = (y0, x0); ``up`` is scratch.
+    """
+    levels = len(g) - 1
+    for lv in range(levels + 1):
+        if lv < levels:  # band = g[lv] - up(g[lv + 1])
+            band = _pyr_up(g[lv + 1], _view(up, g[lv].shape))
+            np.subtract(g[lv], band, out=band)
+        else:
+            band = g[levels]
+        _per_channel(np.multiply, band, mk[lv])
+        oy, ox = corner[0] >> lv, corner[1] >> lv
+        hh, ww = mk[lv].shape
+        acc[lv][oy : oy + hh, ox : ox + ww] += band
+        wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
 
 
 class _Scratch(NamedTuple):
