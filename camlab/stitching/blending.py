@@ -9,6 +9,7 @@ See :mod:`camlab.stitching` for the whole pipeline; every name here is re-export
 from __future__ import annotations
 
 from collections.abc import Sequence
+from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -209,12 +210,15 @@ def _seam_path(cost: np.ndarray) -> np.ndarray:
     h, w = cost.shape
     E = np.full((h, w + 2), np.inf)  # one column of infinity each side: no path leaves the grid
     E[0, 1:-1] = cost[0]
-    back = np.zeros((h, w), np.int64)
     for r in range(1, h):
-        left, up, right = E[r - 1, :-2], E[r - 1, 1:-1], E[r - 1, 2:]  # from c-1, c, c+1
-        best = np.minimum(np.minimum(left, up), right)
-        back[r] = np.where(left == best, -1, np.where(up == best, 0, 1))  # ties: the leftmost
+        prev = E[r - 1]
+        best = np.minimum(np.minimum(prev[:-2], prev[1:-1]), prev[2:])  # from c-1, c, c+1
         np.add(cost[r], best, out=E[r, 1:-1])
+    # every row's step back, at once from the finished table (ties: the leftmost)
+    left, up, right = E[:-1, :-2], E[:-1, 1:-1], E[:-1, 2:]
+    best = np.minimum(np.minimum(left, up), right)
+    back = np.zeros((h, w), np.int64)
+    back[1:] = np.where(left == best, -1, np.where(up == best, 0, 1))
     E = E[:, 1:-1]
     path = np.zeros(h, np.int64)
     path[-1] = int(np.argmin(E[-1]))
@@ -547,6 +551,7 @@ def _multiband(
     levels: int,
     *,
     extended: bool = False,
+    gains: np.ndarray | None = None,
 ) -> np.ndarray:
     """:func:`laplacian_blend` of images given in boxes of the canvas.
 
@@ -556,7 +561,9 @@ def _multiband(
     Each image is extended beyond its footprint before its pyramid is built: by push-pull
     (:func:`_fill_outside`), or, if ``extended`` (the images already repeat their edge
     pixels outside the footprint, as :func:`warp_images` makes them), by repeating the
-    box's border pixels, as OpenCV's multi-band blender does.
+    box's border pixels, as OpenCV's multi-band blender does. ``gains`` (with ``extended``)
+    are applied to that copy as :func:`_gained` would to the whole image (the same values,
+    without a second copy of every image).
     """
     import cv2
 
@@ -574,13 +581,21 @@ def _multiband(
     # each pyrDown's 5-tap filter reaches 2 pixels of its input, 2^l full-resolution pixels at level l,
     # so after `levels` of them a seam mask reaches 2 (2^levels - 1) < 2 step pixels beyond itself
     pad = 2 * step
-    for img, m, foot, (r0, r1, c0, c1) in zip(images, masks, feet, boxes, strict=True):
-        if not m.any():
+    work = [
+        _seam_work_box(m, r0, c0, (h, w), step, pad) if m.any() else None
+        for m, (r0, _r1, c0, _c1) in zip(masks, boxes, strict=True)
+    ]
+    buf = _scratch(work, (h, w), nch)
+    for k, (img, m, foot, (r0, r1, c0, c1)) in enumerate(
+        zip(images, masks, feet, boxes, strict=True)
+    ):
+        if work[k] is None:
             continue
         union[r0:r1, c0:c1] |= m
-        y0, y1, x0, x1 = _seam_work_box(m, r0, c0, (h, w), step, pad)
+        y0, y1, x0, x1 = work[k]
         # the image's box placed in that aligned box (each may stick out of the other)
-        mk0 = np.zeros((y1 - y0, x1 - x0), np.float32)
+        mk0 = _view(buf.mask, (y1 - y0, x1 - x0))
+        mk0.fill(0)
         ys, xs = (
             slice(max(r0, y0) - y0, min(r1, y1) - y0),
             slice(max(c0, x0) - x0, min(c1, x1) - x0),
@@ -592,14 +607,15 @@ def _multiband(
         mk0[ys, xs] = m[ps, qs]
         if extended:
             sub = cv2.copyMakeBorder(
-                np.ascontiguousarray(img[ps, qs], np.float32),
+                np.asarray(img[ps, qs], np.float32),  # OpenCV reads the strided box as it is
                 ys.start,
                 y1 - y0 - ys.stop,
                 xs.start,
                 x1 - x0 - xs.stop,
                 cv2.BORDER_REPLICATE,
+                dst=_view(buf.copy, mk0.shape + (nch,)),
             ).reshape(mk0.shape + (nch,))
-            g = [sub]
+            g = [sub if gains is None else _gained(sub, gains[k], out=sub)]
         else:
             sub = np.zeros((y1 - y0, x1 - x0, nch), np.float32)
             valid = np.zeros((y1 - y0, x1 - x0), bool)
@@ -610,33 +626,72 @@ def _multiband(
         for _ in range(levels):
             g.append(_pyr_down(g[-1]))
             mk.append(cv2.pyrDown(mk[-1]))
-        for lv in range(levels + 1):
-            if lv < levels:  # band = g[lv] - up(g[lv + 1]), computed in place
-                band = cv2.pyrUp(g[lv + 1], dstsize=(g[lv].shape[1], g[lv].shape[0])).reshape(
-                    g[lv].shape
-                )
-                np.subtract(g[lv], band, out=band)
-            else:
-                band = g[levels]
-            _per_channel(np.multiply, band, mk[lv])
-            oy, ox = y0 >> lv, x0 >> lv
-            hh, ww = mk[lv].shape
-            acc[lv][oy : oy + hh, ox : ox + ww] += band
-            wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
+        _add_bands(g, mk, acc, wsum, (y0, x0), buf.up)
     for a, s in zip(acc, wsum, strict=True):  # each band's weighted mean, in place
-        _per_channel(np.divide, a, np.maximum(s, 1e-6))
-    out = acc[-1]
-    for lv in range(levels - 1, -1, -1):
-        out = cv2.pyrUp(out, dstsize=(acc[lv].shape[1], acc[lv].shape[0])).reshape(acc[lv].shape)
-        out += acc[lv]
+        _per_channel(np.divide, a, np.maximum(s, 1e-6, out=s))
+    for lv in range(levels - 1, -1, -1):  # collapse: acc[lv] += up(acc[lv + 1])
+        acc[lv] += _pyr_up(acc[lv + 1], _view(buf.up, acc[lv].shape))
+    out = acc[0]
     np.clip(out, 0, 1, out=out)
     _per_channel(np.multiply, out, union)  # 0 outside the union (out[~union] = 0 is 4x slower)
     return out
 
 
-def _gained(image: np.ndarray, gain: float) -> np.ndarray:
-    """``min(gain * image, 1)`` as float32 (image >= 0), in one new array."""
-    out = np.multiply(image, np.float32(gain))
+def _add_bands(g: list, mk: list, acc: list, wsum: list, corner: tuple, up: np.ndarray) -> None:
+    """Add one image's Laplacian bands, times its seam mask's pyramid, into ``acc`` (and the masks into ``wsum``).
+
+    ``g`` and ``mk`` are the Gaussian pyramids of the image and of its seam mask in its work box,
+    whose corner on the full-resolution canvas is ``corner`` = (y0, x0); ``up`` is scratch.
+    """
+    levels = len(g) - 1
+    for lv in range(levels + 1):
+        if lv < levels:  # band = g[lv] - up(g[lv + 1])
+            band = _pyr_up(g[lv + 1], _view(up, g[lv].shape))
+            np.subtract(g[lv], band, out=band)
+        else:
+            band = g[levels]
+        _per_channel(np.multiply, band, mk[lv])
+        oy, ox = corner[0] >> lv, corner[1] >> lv
+        hh, ww = mk[lv].shape
+        acc[lv][oy : oy + hh, ox : ox + ww] += band
+        wsum[lv][oy : oy + hh, ox : ox + ww] += mk[lv]
+
+
+class _Scratch(NamedTuple):
+    """Flat float32 buffers :func:`_multiband` reuses for every image and level.
+
+    A fresh multi-megabyte array costs a page fault per page (numpy asks for huge pages from
+    4 MB, each zeroed on its first touch), so each image's arrays are views of these.
+    """
+
+    up: np.ndarray  # an upsampled level, of a band or of the collapse (up to the whole canvas)
+    copy: np.ndarray  # an image's bordered copy: level 0 of its pyramid
+    mask: np.ndarray  # its seam mask, level 0
+
+
+def _scratch(work: list, shape: tuple, nch: int) -> _Scratch:
+    """:class:`_Scratch` large enough for the canvas ``shape`` and every work box (None: skipped)."""
+    area = max(((y1 - y0) * (x1 - x0) for y0, y1, x0, x1 in filter(None, work)), default=0)
+    return _Scratch(
+        *(np.empty(n, np.float32) for n in (shape[0] * shape[1] * nch, area * nch, area))
+    )
+
+
+def _view(buffer: np.ndarray, shape: tuple) -> np.ndarray:
+    """A C-contiguous array of ``shape`` over the start of the flat scratch ``buffer``."""
+    return buffer[: int(np.prod(shape))].reshape(shape)
+
+
+def _pyr_up(image: np.ndarray, out: np.ndarray) -> np.ndarray:
+    """``cv2.pyrUp`` of an (h, w, C) image into ``out`` (its shape sets the size), channel axis kept."""
+    import cv2
+
+    return cv2.pyrUp(image, dst=out, dstsize=(out.shape[1], out.shape[0])).reshape(out.shape)
+
+
+def _gained(image: np.ndarray, gain: float, out: np.ndarray | None = None) -> np.ndarray:
+    """``min(gain * image, 1)`` as float32 (image >= 0), in one new array or in ``out``."""
+    out = np.multiply(image, np.float32(gain), out=out)
     return np.minimum(out, np.float32(1), out=out)
 
 
@@ -700,13 +755,15 @@ def blend(
     if seam not in ("voronoi", "dp"):
         raise CamlabInputError(f"seam: expected 'voronoi' or 'dp', got {seam!r}")
     imgs = warped.patches
+    g = None
     if gains is not None:
         g = np.asarray(gains, dtype=float).ravel()
         if g.shape != (len(imgs),):
             raise CamlabInputError(
                 f"gains: expected {len(imgs)} gains (one per image), got shape {g.shape}"
             )
-        imgs = [_gained(im, gk) for im, gk in zip(imgs, g, strict=True)]
+        if method != "multiband":  # multiband applies them to its own copy of each box
+            imgs = [_gained(im, gk) for im, gk in zip(imgs, g, strict=True)]
     h, w = warped.shape
     boxes = warped.boxes
     if method == "overwrite":
@@ -739,4 +796,5 @@ def blend(
         warped.shape,
         check_integer(levels, "levels", minimum=1),
         extended=True,
+        gains=g,
     )

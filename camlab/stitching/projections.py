@@ -427,22 +427,30 @@ def warp_by_rotation(
     x, y, z = ray_from_canvas(u, v, canvas.projection, np.float32(canvas.s))
     M = (K @ R).astype(np.float32)
     p = [M[r, 0] * x + M[r, 1] * y + M[r, 2] * z for r in range(3)]
-    ahead = p[2] > 1e-6
+    behind = ~(p[2] > 1e-6)
     with np.errstate(divide="ignore", invalid="ignore"):
-        mu = np.where(ahead, p[0] / p[2], -10).astype(np.float32)
-        mv = np.where(ahead, p[1] / p[2], -10).astype(np.float32)
+        mu, mv = np.divide(p[0], p[2], out=p[0]), np.divide(p[1], p[2], out=p[1])
+    mu[behind], mv[behind] = -10, -10  # off the image: remap repeats its edge, the mask excludes it
     h, w = image.shape[:2]
-    mask = ahead & (mu >= -0.5) & (mu <= w - 0.5) & (mv >= -0.5) & (mv <= h - 0.5)
-    out = cv2.remap(image, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(
-        mu.shape + image.shape[2:]
-    )
+    mask = (mu >= -0.5) & (mu <= w - 0.5) & (mv >= -0.5) & (mv <= h - 0.5)
     if extra is None:
-        return CanvasPatch(out, mask, None)
-    more = cv2.remap(extra, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE).reshape(
-        mu.shape + extra.shape[2:]
-    )
+        return CanvasPatch(_remap(image, mu, mv), mask, None)
+    if image.ndim == 3 and image.shape[2] == 3 and image.dtype == extra.dtype:
+        # one 4-channel remap: OpenCV 5 runs it 2x faster than a 3-channel one
+        both = _remap(cv2.merge([image, extra]), mu, mv)
+        out, more = cv2.cvtColor(both, cv2.COLOR_RGBA2RGB), cv2.extractChannel(both, 3)
+    else:
+        out, more = _remap(image, mu, mv), _remap(extra, mu, mv)
     more[~mask] = 0
     return CanvasPatch(out, mask, more)
+
+
+def _remap(image: np.ndarray, mu: np.ndarray, mv: np.ndarray) -> np.ndarray:
+    """``image`` sampled at (mu, mv), bilinear, its edge repeated beyond it; channel axis kept."""
+    import cv2
+
+    out = cv2.remap(image, mu, mv, cv2.INTER_LINEAR, borderMode=cv2.BORDER_REPLICATE)
+    return out.reshape(mu.shape + image.shape[2:])
 
 
 def outline_on_canvas(

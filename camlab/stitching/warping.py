@@ -111,7 +111,8 @@ class WarpedImages:
         out = []
         for p, m, (r0, r1, c0, c1) in zip(parts, self.patch_masks, self.boxes, strict=True):
             full = np.zeros(tuple(self.shape) + p.shape[2:], p.dtype)
-            full[r0:r1, c0:c1][m] = p[m]
+            # full[r0:r1, c0:c1][m] = p[m], without gathering p[m] first (2x faster)
+            np.copyto(full[r0:r1, c0:c1], p, where=m.reshape(m.shape + (1,) * (p.ndim - 2)))
             out.append(full)
         return out
 
@@ -134,7 +135,8 @@ class WarpedImages:
         """Every image and mask on the coarse canvas grid ``[::step, ::step]``, from the boxes.
 
         As ``images[k][::step, ::step]``, but with the patches' replicated border kept outside
-        the masks, and built without the full canvas.
+        the masks, and built without the full canvas. Made once per step (exposure gains and
+        seams search the same grid) and returned read-only.
 
         Parameters
         ----------
@@ -146,6 +148,13 @@ class WarpedImages:
         SubsampledCanvas
             ``images`` and ``masks``, each of the grid's shape (ceil(h / step), ceil(w / step)).
         """
+        made = self.__dict__.setdefault("_subsampled", {})  # as cached_property stores its value
+        if step not in made:
+            made[step] = self._subsample(step)
+        return made[step]
+
+    def _subsample(self, step: int) -> SubsampledCanvas:
+        """:meth:`subsampled`, built."""
         h, w = self.shape
         size = (-(-h // step), -(-w // step))
         imgs, masks = [], []
@@ -163,6 +172,8 @@ class WarpedImages:
             mk[a : a + sm.shape[0], b : b + sm.shape[1]] = sm
             imgs.append(im)
             masks.append(mk)
+        for a in imgs + masks:
+            a.flags.writeable = False
         return SubsampledCanvas(imgs, masks)
 
 
@@ -293,10 +304,11 @@ def warp_images_by_rotation(
     """
     h, w = canvas.shape
     out_i, out_m, out_w, boxes = [], [], [], []
+    feathers: dict = {}  # one per image size (remap does not change its source)
     for im, K, R, box in zip(images, Ks, Rs, canvas.boxes, strict=True):
-        patch, mask, wgt = warp_by_rotation(
-            im, K, R, canvas, box, feather_weights(im.shape).astype(np.float32)
-        )
+        if im.shape[:2] not in feathers:
+            feathers[im.shape[:2]] = feather_weights(im.shape).astype(np.float32)
+        patch, mask, wgt = warp_by_rotation(im, K, R, canvas, box, feathers[im.shape[:2]])
         wgt = _inside(wgt, mask)
         r0, r1, c0, c1 = box
         if c0 < 0 or c1 > w:
