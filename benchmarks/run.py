@@ -1,5 +1,7 @@
 """Every benchmark in one run: demo latency (ipympl path and real browser), import time,
-camlab-versus-OpenCV speed ratios, and the lessons' wall time under nbval (lesson_times.py).
+camlab-versus-OpenCV speed ratios, robust estimation on hard real pairs against OpenCV's
+RANSAC and MAGSAC (robust_ransac.py, 10 seeds: issue 32's worst-seed row), and the lessons'
+wall time under nbval (lesson_times.py).
 
 Each `benchmarks/speed_<topic>.py` provides `rows()` returning dicts with case, camlab_ms,
 opencv_ms, ratio, target and ok; this script prints them all as tables.
@@ -16,6 +18,7 @@ sys.path.insert(0, str(HERE))
 
 import latency  # noqa: E402
 import lesson_times  # noqa: E402
+import robust_ransac  # noqa: E402
 from _timing import print_table  # noqa: E402
 
 
@@ -33,6 +36,7 @@ def main() -> int:
         failed += [f"{path.stem}: {r['case']}" for r in rows if not r["ok"]]
     if failed:
         print("\nMissed targets:\n- " + "\n- ".join(failed))
+    robust_ransac.main(["--only", "hard", "--seeds", "10"])  # issue 32: the worst of 10 seeds
     lesson_times.main([])  # last: 3 runs of every lesson, a few minutes
     return 0
 
