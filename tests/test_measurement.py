@@ -251,3 +251,24 @@ def test_bad_plane_inputs():
         area_on_plane(pose, K, uv[:2])
     with pytest.raises(DegenerateError, match="collinear|general position|three"):
         solve_pnp(BOARD[:9], uv[:9], K)
+
+
+def test_the_refinements_unchecked_steps_give_the_readable_ones_floats():
+    """solve_pnp's inner loop (cached, unchecked rotations; unchecked distortion) is bit for bit
+    the readable _update and distort_pixels."""
+    from camlab.distortion import distort_pixels
+    from camlab.measurement import pnp
+
+    rng = np.random.default_rng(5)
+    rotation = pnp._Rotations(keep=2)
+    step = pnp._step(rotation)
+    for _ in range(200):
+        x = np.r_[rng.normal(0, 1.2, 3), rng.normal(0, 1, 3)]
+        delta = rng.normal(0, 10.0 ** rng.uniform(-12, 0), 6)
+        assert np.array_equal(step(x, delta), pnp._update(x, delta))
+        assert np.array_equal(step(x, delta), pnp._update(x, delta))  # again, R of x from the cache
+        assert np.array_equal(rotation(x[:3]), rotation_from_axis_angle(x[:3]))
+    assert len(rotation.seen) <= 2
+    dist = np.array([-0.3, 0.12, 0.001, -0.002, 0.01])
+    uv = rng.uniform(0, 640, (50, 2))
+    assert np.array_equal(pnp._distorted(uv, K, dist), distort_pixels(uv, K, dist))
