@@ -108,6 +108,34 @@ def test_find_chessboard_explains_failures(bundled):
         C.find_chessboard(np.zeros((4, 4, 2)), (9, 6))
 
 
+def test_find_chessboard_answers_a_photo_seen_again_from_memory(bundled, monkeypatch):
+    """A photo asked again (the same pixels, pattern and max_side) is not detected again: the
+    answer is the first one's, as a fresh copy; other pixels, patterns or max_side detect anew."""
+    from camlab.calibration import detection
+
+    monkeypatch.setattr(detection, "_SEEN", type(detection._SEEN)())
+    img = bundled.images[3]
+    calls = []
+    find = detection._find
+    monkeypatch.setattr(detection, "_find", lambda *a: calls.append(a[1:]) or find(*a))
+    first = C.find_chessboard(img, (9, 6))
+    first.corners[:] = -1.0  # the caller's copy: changing it leaves the remembered answer alone
+    again = C.find_chessboard(img.copy(), "9x6")
+    fresh = find(img, detection.PatternSize(9, 6), 1600)
+    assert calls == [((9, 6), 1600)]
+    assert again == fresh._replace(corners=again.corners)
+    assert np.array_equal(again.corners, fresh.corners)
+    C.find_chessboard(img, (9, 6), max_side=None)
+    C.find_chessboard(img, (10, 7))
+    other = img.copy()
+    other[0, 0] ^= 1  # one grey level of one pixel
+    C.find_chessboard(other, (9, 6))
+    assert len(calls) == 4
+    monkeypatch.setattr(detection, "_SEEN_KEEP", 2)
+    C.find_chessboard(bundled.images[4], (9, 6))
+    assert len(detection._SEEN) == 2
+
+
 # ---------------------------------------------------------------- Zhang's stages, noise-free
 
 
