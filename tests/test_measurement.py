@@ -272,3 +272,32 @@ def test_the_refinements_unchecked_steps_give_the_readable_ones_floats():
     dist = np.array([-0.3, 0.12, 0.001, -0.002, 0.01])
     uv = rng.uniform(0, 640, (50, 2))
     assert np.array_equal(pnp._distorted(uv, K, dist), distort_pixels(uv, K, dist))
+
+
+def test_the_picking_sigma_is_the_central_difference_of_pixels_to_plane():
+    """measure_on_plane inverts the plane's homography once for all its pixel steps: the same
+    numbers as stepping each pixel through the readable pixels_to_plane."""
+    from camlab.measurement.plane import _STEP_PIXEL
+
+    uv = project_pose(
+        K, rotation_from_axis_angle([0.3, -0.2, 0.1]), np.array([-0.1, 0, 0.8]), BOARD
+    )
+    pose = solve_pnp(BOARD, uv + np.random.default_rng(1).normal(0, 0.2, uv.shape), K)
+    ends = uv[[0, 53]]
+    m = measure_on_plane(pose, K, ends[:1], ends[1:], pixel_sigma=0.5)
+    g = []
+    for k in range(4):
+        d = np.zeros(4)
+        d[k] = _STEP_PIXEL
+        plus, minus = (
+            pixels_to_plane(pose, K, ends + d.reshape(2, 2)),
+            pixels_to_plane(pose, K, ends - d.reshape(2, 2)),
+        )
+        g.append(
+            (np.linalg.norm(plus[0] - plus[1]) - np.linalg.norm(minus[0] - minus[1]))
+            / (2 * _STEP_PIXEL)
+        )
+    np.testing.assert_allclose(m.sigma_pixels[0], 0.5 * np.linalg.norm(g), rtol=1e-12)
+    np.testing.assert_allclose(
+        m.value[0], np.linalg.norm(np.subtract(*pixels_to_plane(pose, K, ends))), rtol=1e-14
+    )
