@@ -48,6 +48,7 @@ __all__ = [
     "distort_pixels",
     "distort_points",
     "distortion_jacobian",
+    "distortion_jacobian_unchecked",
     "max_valid_radius",
     "newton_undistort",
     "normalised_to_pixels",
@@ -157,8 +158,24 @@ def distort_xy(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> DistortedXY:
     return DistortedXY(xd, yd)
 
 
-def _jacobian(xy: np.ndarray, d: np.ndarray) -> np.ndarray:
-    """(..., 2, 2) derivative of the distorted point with respect to the ideal point."""
+def distortion_jacobian_unchecked(xy: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """:func:`distortion_jacobian` without its checks: for refiners' inner loops (calibration).
+
+    Like :func:`distort_xy`, no checks: ``xy`` is a float array of normalised coordinates and
+    ``d`` the 5 coefficients from :func:`as_dist`.
+
+    Parameters
+    ----------
+    xy : (..., 2) ndarray
+        Ideal normalised coordinates (dimensionless).
+    d : (5,) ndarray
+        ``(k1, k2, p1, p2, k3)`` from :func:`as_dist`.
+
+    Returns
+    -------
+    (..., 2, 2) ndarray
+        d(distorted) / d(ideal) at each point: row i differentiates distorted coordinate i.
+    """
     k1, k2, p1, p2, k3 = d
     x, y = xy[..., 0], xy[..., 1]
     r2 = x * x + y * y
@@ -220,7 +237,7 @@ def distortion_jacobian(points: ArrayLike, dist: ArrayLike | None) -> np.ndarray
         coordinate i with respect to (x, y).
     """
     pts = as_points(points, 2, "points")
-    return pts.restore(_jacobian(pts.array, as_dist(dist)))
+    return pts.restore(distortion_jacobian_unchecked(pts.array, as_dist(dist)))
 
 
 def undistort_points(
@@ -332,7 +349,7 @@ def newton_undistort(
         res = np.abs(r).max(axis=1)
         if not (res > tol).any():
             break
-        J = _jacobian(x, d)
+        J = distortion_jacobian_unchecked(x, d)
         det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             dx = (J[:, 1, 1] * r[:, 0] - J[:, 0, 1] * r[:, 1]) / det

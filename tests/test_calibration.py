@@ -108,6 +108,34 @@ def test_find_chessboard_explains_failures(bundled):
         C.find_chessboard(np.zeros((4, 4, 2)), (9, 6))
 
 
+def test_find_chessboard_answers_a_photo_seen_again_from_memory(bundled, monkeypatch):
+    """A photo asked again (the same pixels, pattern and max_side) is not detected again: the
+    answer is the first one's, as a fresh copy; other pixels, patterns or max_side detect anew."""
+    from camlab.calibration import detection
+
+    monkeypatch.setattr(detection, "_SEEN", type(detection._SEEN)())
+    img = bundled.images[3]
+    calls = []
+    find = detection._find
+    monkeypatch.setattr(detection, "_find", lambda *a: calls.append(a[1:]) or find(*a))
+    first = C.find_chessboard(img, (9, 6))
+    first.corners[:] = -1.0  # the caller's copy: changing it leaves the remembered answer alone
+    again = C.find_chessboard(img.copy(), "9x6")
+    fresh = find(img, detection.PatternSize(9, 6), 1600)
+    assert calls == [((9, 6), 1600)]
+    assert again == fresh._replace(corners=again.corners)
+    assert np.array_equal(again.corners, fresh.corners)
+    C.find_chessboard(img, (9, 6), max_side=None)
+    C.find_chessboard(img, (10, 7))
+    other = img.copy()
+    other[0, 0] ^= 1  # one grey level of one pixel
+    C.find_chessboard(other, (9, 6))
+    assert len(calls) == 4
+    monkeypatch.setattr(detection, "_SEEN_KEEP", 2)
+    C.find_chessboard(bundled.images[4], (9, 6))
+    assert len(detection._SEEN) == 2
+
+
 # ---------------------------------------------------------------- Zhang's stages, noise-free
 
 
@@ -215,6 +243,30 @@ def test_analytic_jacobian_matches_finite_differences():
         pm[:, k] -= 1e-7
         num = (project_views(g, pp, X) - project_views(g, pm, X)) / 2e-7
         np.testing.assert_allclose(Jp[..., k], num, rtol=1e-5, atol=1e-4)
+
+
+def test_the_pose_jacobian_is_the_chain_rule_point_by_point():
+    """project_views multiplies -[RX]x Jl one view at a time (all its points in one product) and
+    differentiates the distortion unchecked: the readable per-point chain gives the same numbers."""
+    from camlab.calibration.refinement import _rotations_and_left_jacobians
+    from camlab.camera import cross_matrix, division_jacobian
+    from camlab.distortion import distortion_jacobian
+
+    rng = np.random.default_rng(6)
+    g = np.array([800.0, 790.0, 320.0, 240.0, 0.7, -0.2, 0.05, 0.001, -0.002, 0.01])
+    poses = np.c_[rng.normal(0, 0.5, (5, 3)), rng.normal(0, 0.05, (5, 2)), rng.uniform(0.4, 1, 5)]
+    X = np.concatenate([rng.uniform(-0.1, 0.1, (5, 12, 2)), np.zeros((5, 12, 1))], axis=-1)
+    _, _, Jp = project_views(g, poses, X, jac=True)
+    R, Jl = _rotations_and_left_jacobians(poses[:, :3])
+    for v in range(5):
+        for m in range(12):
+            RX = R[v] @ X[v, m]
+            Xc = RX + poses[v, 3:]
+            Jd = distortion_jacobian(Xc[:2] / Xc[2], g[5:])
+            A = np.array([[g[0], g[4]], [0.0, g[1]]]) @ Jd
+            dXc = A @ division_jacobian(Xc)
+            want = np.hstack([dXc @ (-cross_matrix(RX) @ Jl[v]), dXc])
+            np.testing.assert_allclose(Jp[v, m], want, rtol=1e-13, atol=1e-13 * np.abs(want).max())
 
 
 def test_schur_complement_solve_equals_the_dense_solve():

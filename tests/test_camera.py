@@ -61,6 +61,46 @@ def test_axis_angle_round_trip(v):
     assert np.allclose(cm.axis_angle_from_rotation(R), r, atol=1e-7)
 
 
+def _rodrigues_as_written(r):
+    """Rodrigues' formula as rotation_from_axis_angle first wrote it (numpy norm, numpy scalars)."""
+    theta = float(np.linalg.norm(r))
+    if theta < 1e-15:
+        return np.eye(3)
+    k = r / theta
+    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    return np.eye(3) + np.sin(theta) * kx + (1.0 - np.cos(theta)) * (kx @ kx)
+
+
+def _axis_angle_as_written(a):
+    """axis_angle_from_rotation as first written (np.trace, np.clip), for angles below pi."""
+    cos = np.clip((np.trace(a) - 1.0) / 2.0, -1.0, 1.0)
+    theta = float(np.arccos(cos))
+    w = np.array([a[2, 1] - a[1, 2], a[0, 2] - a[2, 0], a[1, 0] - a[0, 1]]) / 2.0
+    if theta < 1e-12:
+        return w
+    return w / np.sin(theta) * theta
+
+
+def test_the_unchecked_rotations_give_the_readable_formulas_floats(rng):
+    """The refiners' unchecked Rodrigues and its inverse: bit for bit the formulas as written."""
+    scales = [0.0, 1e-16, 1e-9, 1e-3, 0.5, 2.0, np.pi - 1e-3, np.pi]
+    for s in scales:
+        for _ in range(50):
+            r = rng.normal(size=3)
+            r = r / np.linalg.norm(r) * s * rng.uniform(0.5, 1.0)
+            R = cm.rotation_from_axis_angle_unchecked(r)
+            assert np.array_equal(R, _rodrigues_as_written(r))
+            assert np.array_equal(R, cm.rotation_from_axis_angle(r))
+            back = cm.axis_angle_from_rotation_unchecked(R)
+            assert np.array_equal(back, cm.axis_angle_from_rotation(R))
+            if np.pi - np.linalg.norm(back) > 1e-6:
+                assert np.array_equal(back, _axis_angle_as_written(R))
+    with pytest.raises(CamlabInputError, match="rvec"):  # the checked entry points still check
+        cm.rotation_from_axis_angle([1.0, np.nan, 0.0])
+    with pytest.raises(CamlabInputError, match="rotation"):
+        cm.axis_angle_from_rotation(np.diag([1.0, 1.0, -1.0]))
+
+
 def test_axis_angle_at_pi():
     r = np.array([0.0, np.pi, 0.0])
     back = cm.axis_angle_from_rotation(cm.rotation_from_axis_angle(r))

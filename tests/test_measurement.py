@@ -251,3 +251,53 @@ def test_bad_plane_inputs():
         area_on_plane(pose, K, uv[:2])
     with pytest.raises(DegenerateError, match="collinear|general position|three"):
         solve_pnp(BOARD[:9], uv[:9], K)
+
+
+def test_the_refinements_unchecked_steps_give_the_readable_ones_floats():
+    """solve_pnp's inner loop (cached, unchecked rotations; unchecked distortion) is bit for bit
+    the readable _update and distort_pixels."""
+    from camlab.distortion import distort_pixels
+    from camlab.measurement import pnp
+
+    rng = np.random.default_rng(5)
+    rotation = pnp._Rotations(keep=2)
+    step = pnp._step(rotation)
+    for _ in range(200):
+        x = np.r_[rng.normal(0, 1.2, 3), rng.normal(0, 1, 3)]
+        delta = rng.normal(0, 10.0 ** rng.uniform(-12, 0), 6)
+        assert np.array_equal(step(x, delta), pnp._update(x, delta))
+        assert np.array_equal(step(x, delta), pnp._update(x, delta))  # again, R of x from the cache
+        assert np.array_equal(rotation(x[:3]), rotation_from_axis_angle(x[:3]))
+    assert len(rotation.seen) <= 2
+    dist = np.array([-0.3, 0.12, 0.001, -0.002, 0.01])
+    uv = rng.uniform(0, 640, (50, 2))
+    assert np.array_equal(pnp._distorted(uv, K, dist), distort_pixels(uv, K, dist))
+
+
+def test_the_picking_sigma_is_the_central_difference_of_pixels_to_plane():
+    """measure_on_plane inverts the plane's homography once for all its pixel steps: the same
+    numbers as stepping each pixel through the readable pixels_to_plane."""
+    from camlab.measurement.plane import _STEP_PIXEL
+
+    uv = project_pose(
+        K, rotation_from_axis_angle([0.3, -0.2, 0.1]), np.array([-0.1, 0, 0.8]), BOARD
+    )
+    pose = solve_pnp(BOARD, uv + np.random.default_rng(1).normal(0, 0.2, uv.shape), K)
+    ends = uv[[0, 53]]
+    m = measure_on_plane(pose, K, ends[:1], ends[1:], pixel_sigma=0.5)
+    g = []
+    for k in range(4):
+        d = np.zeros(4)
+        d[k] = _STEP_PIXEL
+        plus, minus = (
+            pixels_to_plane(pose, K, ends + d.reshape(2, 2)),
+            pixels_to_plane(pose, K, ends - d.reshape(2, 2)),
+        )
+        g.append(
+            (np.linalg.norm(plus[0] - plus[1]) - np.linalg.norm(minus[0] - minus[1]))
+            / (2 * _STEP_PIXEL)
+        )
+    np.testing.assert_allclose(m.sigma_pixels[0], 0.5 * np.linalg.norm(g), rtol=1e-12)
+    np.testing.assert_allclose(
+        m.value[0], np.linalg.norm(np.subtract(*pixels_to_plane(pose, K, ends))), rtol=1e-14
+    )

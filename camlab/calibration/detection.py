@@ -9,6 +9,8 @@ Pixels (u, v) = (column, row), origin at the centre of the top-left pixel.
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from collections.abc import Sequence
 from typing import NamedTuple
 
@@ -283,11 +285,38 @@ def find_chessboard(
     :math:`s_x, s_y`) a corner at :math:`u'` is at :math:`(u' + 1/2)/s_x - 1/2` in the full
     image (pixel centres), where ``cornerSubPix`` refines it again with a window
     :math:`1/s` times larger.
+
+    The same photo asked again (the same grey pixels, pattern and ``max_side``) gets its
+    earlier answer, not a second detection (the last 64 are kept, by a hash of the pixels):
+    the lessons and ``camlab calibrate`` often look at the same photos more than once.
     """
     pattern = parse_pattern(pattern_size, "pattern_size")
     img = grey_uint8(image)
     if max_side is not None:
         max_side = int(check_positive(max_side, "max_side", "pixels"))
+    key = (
+        hashlib.blake2b(np.ascontiguousarray(img), digest_size=16).digest(),
+        img.shape,
+        pattern,
+        max_side,
+    )
+    found = _SEEN.get(key)
+    if found is None:
+        found = _SEEN[key] = _find(img, pattern, max_side)
+        while len(_SEEN) > _SEEN_KEEP:
+            _SEEN.popitem(last=False)  # the least recently asked
+    else:
+        _SEEN.move_to_end(key)
+    return found._replace(corners=None if found.corners is None else found.corners.copy())
+
+
+_SEEN: OrderedDict[tuple, ChessboardDetection] = OrderedDict()
+"""find_chessboard's recent answers, by the grey image's pixels (a hash), pattern and max_side."""
+_SEEN_KEEP = 64
+
+
+def _find(img: np.ndarray, pattern: PatternSize, max_side: int | None) -> ChessboardDetection:
+    """find_chessboard on a checked grey image: detect on the work copy, refine on the full image."""
     small, sx, sy = _work_copy(img, max_side)
     corners, detector = _detect(small, pattern)
     if corners is None:

@@ -15,7 +15,12 @@ from numpy.typing import ArrayLike
 
 from .._validate import as_float, as_points, check_intrinsics, check_matrix
 from ..camera import cross_matrix, division_jacobian, rotation_from_axis_angle
-from ..distortion import as_dist, beyond_valid_radius, distort_xy, distortion_jacobian
+from ..distortion import (
+    as_dist,
+    beyond_valid_radius,
+    distort_xy,
+    distortion_jacobian_unchecked,
+)
 from ..optimise import NormalEquations
 
 PARAM_NAMES = ("fx", "fy", "cx", "cy", "skew", "k1", "k2", "p1", "p2", "k3")
@@ -160,12 +165,13 @@ def project_views(
     dyd = np.stack([y * r2, y * r4, r2 + 2 * y * y, 2 * x * y, y * r4 * r2], axis=-1)
     Jg[..., 0, 5:] = fx * dxd + s * dyd
     Jg[..., 1, 5:] = fy * dyd
-    Jd = distortion_jacobian(np.stack([x, y], axis=-1).reshape(-1, 2), g[5:]).reshape(V, M, 2, 2)
+    Jd = distortion_jacobian_unchecked(np.stack([x, y], axis=-1), g[5:])  # (V, M, 2, 2)
     A = np.empty_like(Jd)  # d uv / d (x, y) = K_p @ Jd
     A[..., 0, :] = fx * Jd[..., 0, :] + s * Jd[..., 1, :]
     A[..., 1, :] = fy * Jd[..., 1, :]
     dXc = A @ division_jacobian(Xc)  # (V, M, 2, 3): d uv / d Xc = d uv / d t
-    dR = -cross_matrix(RX) @ Jl[:, None]  # d (R X) / d rvec, (V, M, 3, 3)
+    # d (R X) / d rvec = -[RX]x Jl, (V, M, 3, 3): each view's M matrices stacked, one product per view
+    dR = (-cross_matrix(RX).reshape(V, 3 * M, 3) @ Jl).reshape(V, M, 3, 3)
     Jp = np.concatenate([dXc @ dR, dXc], axis=-1)
     return ViewProjection(uv, Jg, Jp)
 

@@ -10,6 +10,7 @@ radians. Part of :mod:`camlab.camera` (every name here is importable from there)
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -29,6 +30,7 @@ __all__ = [
     "CV_FROM_GL",
     "Pose",
     "axis_angle_from_rotation",
+    "axis_angle_from_rotation_unchecked",
     "euler_from_rotation",
     "is_rotation",
     "look_at_rotation",
@@ -38,6 +40,7 @@ __all__ = [
     "opencv_from_opengl",
     "opengl_from_opencv",
     "rotation_from_axis_angle",
+    "rotation_from_axis_angle_unchecked",
     "rotation_from_euler",
     "rotation_x",
     "rotation_y",
@@ -94,12 +97,30 @@ def rotation_from_axis_angle(rvec: ArrayLike) -> np.ndarray:
            [ 1.,  0.,  0.],
            [ 0.,  0.,  1.]])
     """
-    r = check_matrix(rvec, (3,), "rvec")
-    theta = float(np.linalg.norm(r))
+    return rotation_from_axis_angle_unchecked(check_matrix(rvec, (3,), "rvec"))
+
+
+def rotation_from_axis_angle_unchecked(r: np.ndarray) -> np.ndarray:
+    """:func:`rotation_from_axis_angle` (the same formula, the same floats) without checking ``r``.
+
+    For refiners that call it at every iteration on parameters they made themselves
+    (:func:`camlab.measurement.solve_pnp`); anything else calls the checked one.
+
+    Parameters
+    ----------
+    r : (3,) ndarray
+        A finite float rotation vector, radians.
+
+    Returns
+    -------
+    (3, 3) ndarray
+        The rotation.
+    """
+    theta = math.sqrt(r.dot(r))  # np.linalg.norm(r), the same float
     if theta < 1e-15:
         return np.eye(3)
-    k = r / theta
-    kx = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
+    k0, k1, k2 = (r / theta).tolist()
+    kx = np.array([[0.0, -k2, k1], [k2, 0.0, -k0], [-k1, k0, 0.0]])
     return np.eye(3) + np.sin(theta) * kx + (1.0 - np.cos(theta)) * (kx @ kx)
 
 
@@ -127,10 +148,29 @@ def axis_angle_from_rotation(R: ArrayLike) -> np.ndarray:
     .. [1] R. Szeliski, *Computer Vision: Algorithms and Applications*, 2nd ed., 2022, section
        2.1.3 (axis/angle, Rodrigues' formula).
     """
-    a = check_rotation(R)
-    cos = np.clip((np.trace(a) - 1.0) / 2.0, -1.0, 1.0)
+    return axis_angle_from_rotation_unchecked(check_rotation(R))
+
+
+def axis_angle_from_rotation_unchecked(a: np.ndarray) -> np.ndarray:
+    """:func:`axis_angle_from_rotation` (the same formula, the same floats) without checking ``a``.
+
+    For refiners that step a rotation at every iteration (:func:`camlab.measurement.solve_pnp`);
+    anything else calls the checked one.
+
+    Parameters
+    ----------
+    a : (3, 3) ndarray
+        A float rotation matrix (orthonormal, det +1), e.g. a product of rotations.
+
+    Returns
+    -------
+    (3,) ndarray
+        The unit axis times the angle, radians.
+    """
+    (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = a.tolist()
+    cos = min(max((a00 + a11 + a22 - 1.0) / 2.0, -1.0), 1.0)  # (tr R - 1) / 2, clipped
     theta = float(np.arccos(cos))
-    w = np.array([a[2, 1] - a[1, 2], a[0, 2] - a[2, 0], a[1, 0] - a[0, 1]]) / 2.0
+    w = np.array([a21 - a12, a02 - a20, a10 - a01]) / 2.0
     if theta < 1e-12:
         return w  # sin(theta) ~ theta: the skew part is already the rotation vector
     if np.pi - theta > 1e-6:

@@ -40,7 +40,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from .._validate import CamlabInputError, DegenerateError, as_points, check_intrinsics
-from ..camera import rotation_from_axis_angle
+from ..camera import rotation_from_axis_angle_unchecked
 from ..distortion import as_dist, undistort_pixels
 from .pnp import distortion_jacobian
 
@@ -92,8 +92,17 @@ def _pose_parts(pose) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 def _to_plane(K: np.ndarray, R: np.ndarray, t: np.ndarray, uv: np.ndarray) -> np.ndarray:
     r"""Ideal pixels to the plane Z = 0: :math:`\tilde p \simeq (K [r_1\ r_2\ t])^{-1} \tilde u`."""
-    H = K @ np.column_stack([R[:, 0], R[:, 1], t])
-    p = np.hstack([uv, np.ones((len(uv), 1))]) @ np.linalg.inv(H).T
+    return _through(_plane_from_pixels(K, R, t), uv)
+
+
+def _plane_from_pixels(K: np.ndarray, R: np.ndarray, t: np.ndarray) -> np.ndarray:
+    r""":math:`(K [r_1\ r_2\ t])^{-1}`, the homography from ideal pixels to the plane Z = 0."""
+    return np.linalg.inv(K @ np.column_stack([R[:, 0], R[:, 1], t]))
+
+
+def _through(H_inv: np.ndarray, uv: np.ndarray) -> np.ndarray:
+    """Ideal pixels (N, 2) through the plane's inverse homography: plane points (N, 2)."""
+    p = np.hstack([uv, np.ones((len(uv), 1))]) @ H_inv.T
     return p[:, :2] / p[:, 2:]
 
 
@@ -165,15 +174,20 @@ def _propagate(
     for k in range(6):
         d = np.zeros(6)
         d[k] = _STEP_POSE
-        plus = value(rotation_from_axis_angle(d[:3]) @ R, t + d[3:], uv)
-        minus = value(rotation_from_axis_angle(-d[:3]) @ R, t - d[3:], uv)
+        plus = value(rotation_from_axis_angle_unchecked(d[:3]) @ R, t + d[3:], uv)
+        minus = value(rotation_from_axis_angle_unchecked(-d[:3]) @ R, t - d[3:], uv)
         g_pose[:, k] = (plus - minus) / (2 * _STEP_POSE)
     g_pix = np.zeros((len(m), uv.size))
+    H_inv = _plane_from_pixels(K, R, t)  # the pose stays: one inverse for every pixel's step
+
+    def value_at(u):
+        return np.atleast_1d(value_of(_through(H_inv, u)))
+
     for k in range(uv.size):
         d = np.zeros(uv.size)
         d[k] = _STEP_PIXEL
         step = d.reshape(uv.shape)
-        g_pix[:, k] = (value(R, t, uv + step) - value(R, t, uv - step)) / (2 * _STEP_PIXEL)
+        g_pix[:, k] = (value_at(uv + step) - value_at(uv - step)) / (2 * _STEP_PIXEL)
     if np.any(as_dist(dist)):  # d ideal / d measured at each picked pixel
         D = distortion_jacobian(lambda q: _ideal(q, K, dist), measured)
         g_pix = np.einsum("mki,kij->mkj", g_pix.reshape(len(m), -1, 2), D).reshape(len(m), -1)

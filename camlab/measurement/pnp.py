@@ -86,13 +86,21 @@ from .._validate import (
 from ..calibration.zhang import extrinsics_from_homography
 from ..camera import (
     axis_angle_from_rotation,
+    axis_angle_from_rotation_unchecked,
     cross_matrix,
     division_jacobian,
     estimate_projection_matrix,
     nearest_rotation,
     rotation_from_axis_angle,
+    rotation_from_axis_angle_unchecked,
 )
-from ..distortion import as_dist, distort_pixels, undistort_pixels
+from ..distortion import (
+    as_dist,
+    distort_xy,
+    normalised_to_pixels,
+    pixels_to_normalised,
+    undistort_pixels,
+)
 from ..homography import estimate_homography
 from ..optimise import levenberg_marquardt
 
@@ -328,6 +336,44 @@ def _update(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
     return np.concatenate([axis_angle_from_rotation(R), x[3:] + delta[3:]])
 
 
+class _Rotations:
+    """Rodrigues of the last few rotation vectors, unchecked: the refinement's inner loop.
+
+    Levenberg-Marquardt asks for the same pose's R in its residuals, its Jacobian and the next
+    step; each is :func:`rotation_from_axis_angle_unchecked` of the same rvec (the same floats),
+    computed once. The poses are the refinement's own, so they are not checked again.
+    """
+
+    def __init__(self, keep: int = 4):
+        self.keep = keep
+        self.seen: dict[bytes, np.ndarray] = {}
+
+    def __call__(self, rvec: np.ndarray) -> np.ndarray:
+        key = rvec.tobytes()
+        R = self.seen.get(key)
+        if R is None:
+            if len(self.seen) >= self.keep:
+                del self.seen[next(iter(self.seen))]  # the oldest
+            R = self.seen[key] = rotation_from_axis_angle_unchecked(rvec)
+        return R
+
+
+def _step(rotation: _Rotations):
+    """:func:`_update` (the same floats) on unchecked arrays, R of the current pose from ``rotation``."""
+
+    def update(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
+        R = rotation_from_axis_angle_unchecked(delta[:3]) @ rotation(x[:3])
+        return np.concatenate([axis_angle_from_rotation_unchecked(R), x[3:] + delta[3:]])
+
+    return update
+
+
+def _distorted(pixels: np.ndarray, K: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """:func:`camlab.distortion.distort_pixels` of checked (N, 2) pixels, K and dist: the same floats, no re-checks."""
+    xd, yd = distort_xy(*pixels_to_normalised(pixels, K).T, d)
+    return normalised_to_pixels(np.stack([xd, yd], axis=-1), K)
+
+
 def plane_frame(X: np.ndarray) -> PlaneFrame | None:
     r"""The best-fit plane of points on or near one plane, or None when they span 3-D.
 
@@ -473,17 +519,21 @@ def solve_pnp(
     """
     X, uv, ideal, Km, d = _checked(object_points, image_points, K, dist, method)
     R0, t0, used = _start(Km, X, ideal, method)
+    # checked once above: the loop below works on the refinement's own arrays, unchecked
+    rotation = _Rotations()
 
     def residuals(p: np.ndarray) -> np.ndarray:
-        return (project_pose(Km, rotation_from_axis_angle(p[:3]), p[3:], X) - ideal).ravel()
+        return (project_pose(Km, rotation(p[:3]), p[3:], X) - ideal).ravel()
 
     def jacobian(p: np.ndarray) -> np.ndarray:
-        return pose_jacobian(Km, rotation_from_axis_angle(p[:3]), p[3:], X)
+        return pose_jacobian(Km, rotation(p[:3]), p[3:], X)
 
     x0 = np.concatenate([axis_angle_from_rotation(R0), t0])
-    lm = levenberg_marquardt(residuals, x0, jacobian, update=_update, ftol=1e-15, xtol=1e-14)
+    lm = levenberg_marquardt(
+        residuals, x0, jacobian, update=_step(rotation), ftol=1e-15, xtol=1e-14
+    )
     rvec, t = lm.x[:3], lm.x[3:]
-    R = rotation_from_axis_angle(rvec)
+    R = rotation(rvec)
     behind = int(np.sum(X @ R[2] + t[2] <= 0))
     if behind:
         raise DegenerateError(
@@ -491,15 +541,14 @@ def solve_pnp(
             f"refined to a pose with {behind} of {len(X)} points behind the camera); check that "
             "object_points and image_points are in the same order and the units agree"
         )
-    reproj = project_pose(Km, R, t, X)
-    if np.any(d):
-        reproj = distort_pixels(reproj, Km, d)
+    ideal_reproj = project_pose(Km, R, t, X)
+    reproj = _distorted(ideal_reproj, Km, d) if np.any(d) else ideal_reproj
     res = reproj - uv
     n = len(X)
     sigma2 = float(np.sum(res**2)) / max(2 * n - 6, 1)
     J = pose_jacobian(Km, R, t, X)
     if np.any(d):  # the noise is in the measured pixels: chain through the distortion
-        D = distortion_jacobian(lambda p: distort_pixels(p, Km, d), project_pose(Km, R, t, X))
+        D = distortion_jacobian(lambda p: _distorted(p, Km, d), ideal_reproj)
         J = (D @ J.reshape(n, 2, 6)).reshape(-1, 6)
     cov = sigma2 * np.linalg.pinv(J.T @ J)
     rms = float(np.sqrt(np.sum(res**2) / n))
