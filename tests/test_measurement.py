@@ -255,9 +255,14 @@ def test_bad_plane_inputs():
 
 def test_the_refinements_unchecked_steps_give_the_readable_ones_floats():
     """solve_pnp's inner loop (cached, unchecked rotations; unchecked distortion) is bit for bit
-    the readable _update and distort_pixels."""
+    the readable, checked step and distort_pixels."""
+    from camlab.camera import axis_angle_from_rotation
     from camlab.distortion import distort_pixels
     from camlab.measurement import pnp
+
+    def readable_step(x, delta):
+        R = rotation_from_axis_angle(delta[:3]) @ rotation_from_axis_angle(x[:3])
+        return np.concatenate([axis_angle_from_rotation(R), x[3:] + delta[3:]])
 
     rng = np.random.default_rng(5)
     rotation = pnp._Rotations(keep=2)
@@ -265,8 +270,9 @@ def test_the_refinements_unchecked_steps_give_the_readable_ones_floats():
     for _ in range(200):
         x = np.r_[rng.normal(0, 1.2, 3), rng.normal(0, 1, 3)]
         delta = rng.normal(0, 10.0 ** rng.uniform(-12, 0), 6)
-        assert np.array_equal(step(x, delta), pnp._update(x, delta))
-        assert np.array_equal(step(x, delta), pnp._update(x, delta))  # again, R of x from the cache
+        assert np.array_equal(step(x, delta), readable_step(x, delta))
+        again = step(x, delta)  # R of x from the cache now
+        assert np.array_equal(again, readable_step(x, delta))
         assert np.array_equal(rotation(x[:3]), rotation_from_axis_angle(x[:3]))
     assert len(rotation.seen) <= 2
     dist = np.array([-0.3, 0.12, 0.001, -0.002, 0.01])

@@ -91,7 +91,6 @@ from ..camera import (
     division_jacobian,
     estimate_projection_matrix,
     nearest_rotation,
-    rotation_from_axis_angle,
     rotation_from_axis_angle_unchecked,
 )
 from ..distortion import (
@@ -330,12 +329,6 @@ def pose_covariance(
     return s**2 * np.linalg.pinv(J.T @ J)
 
 
-def _update(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
-    """Step the pose (rvec, t) by a left rotation delta[:3] and a translation delta[3:]."""
-    R = rotation_from_axis_angle(delta[:3]) @ rotation_from_axis_angle(x[:3])
-    return np.concatenate([axis_angle_from_rotation(R), x[3:] + delta[3:]])
-
-
 class _Rotations:
     """Rodrigues of the last few rotation vectors, unchecked: the refinement's inner loop.
 
@@ -359,7 +352,13 @@ class _Rotations:
 
 
 def _step(rotation: _Rotations):
-    """:func:`_update` (the same floats) on unchecked arrays, R of the current pose from ``rotation``."""
+    """The pose step for Levenberg-Marquardt: (rvec, t) moved by a left rotation delta[:3], t by delta[3:].
+
+    The rotation is updated on the manifold, R <- Rodrigues(delta[:3]) R, not by adding rvecs
+    (the Jacobian's rotation columns are derivatives of a small left rotation); the arrays are
+    the refinement's own, so nothing is checked again, and R of the current pose comes from
+    ``rotation``'s cache.
+    """
 
     def update(x: np.ndarray, delta: np.ndarray) -> np.ndarray:
         R = rotation_from_axis_angle_unchecked(delta[:3]) @ rotation(x[:3])
