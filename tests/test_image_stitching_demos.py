@@ -230,7 +230,7 @@ def test_exercises_reference_passes_and_solution_prints(home, name, capsys):
     assert ex.solution(name) is None and f"def {name}" in capsys.readouterr().out
 
 
-def _focal_student(method, scale):
+def _focal_student(method, scale, cut_off=0.0):
     """A student's (f_from, f_to) from a rotation H: ``method`` combines each pair of Szeliski-Shum formulas."""
     import numpy as np
 
@@ -246,7 +246,8 @@ def _focal_student(method, scale):
         with np.errstate(all="ignore"):
             for (a, b), (c, d) in (rows, cols):
                 if method == "larger denominator":
-                    f2 = [a / b if abs(b) > abs(d) else c / d]
+                    n, den = (a, b) if abs(b) > abs(d) else (c, d)
+                    f2 = [n / den if abs(den) > cut_off else np.nan]
                 else:
                     f2 = [c / d] if method == "equal-length only" else [a / b, c / d]
                 fs = [
@@ -265,6 +266,37 @@ def test_focal_check_rejects_ignoring_the_larger_denominator_rule_naming_0_over_
     with pytest.raises(AssertionError, match="is 0/0 because") as info:
         ex.check_focal_from_rotation_homography(_focal_student(method, scale))
     assert "f^2 > 0" in str(info.value)
+
+
+def test_focal_check_names_the_centred_h_transposed():
+    """Transposing after centring gives (1/f_to, 1/f_from): the hint says so, with the numbers."""
+    import numpy as np
+
+    from camlab.exercises.image_stitching.focal import focal_from_rotation_homography
+
+    def student(H, shape):
+        h, w = shape[:2]
+        C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
+        Hc_t = (np.linalg.inv(C) @ np.asarray(H, float) @ C).T
+        return focal_from_rotation_homography(C @ Hc_t @ np.linalg.inv(C), shape)
+
+    with pytest.raises(
+        AssertionError,
+        match=r"\(1/f_to, 1/f_from\) = \(0\.0016722\d*, 0\.0019230\d*\) = \(1/598\.0, 1/520\.0\)",
+    ):
+        ex.check_focal_from_rotation_homography(student)
+
+
+@pytest.mark.parametrize(
+    "cut_off, where", [(1e-12, "test input 4 of 8"), (1e-10, "test input 1 of 8")]
+)
+def test_focal_check_names_a_fixed_cut_off_on_the_denominator(cut_off, where):
+    """A guard abs(d) > 1e-12 on the normalised centred H rejects a real turn (input 4: a 1020 px lens)."""
+    with pytest.raises(AssertionError, match="fixed cut-off") as info:
+        ex.check_focal_from_rotation_homography(
+            _focal_student("larger denominator", "norm", cut_off)
+        )
+    assert where in str(info.value)
 
 
 @pytest.mark.parametrize("scale", ["h22", "norm", "none"])

@@ -52,6 +52,18 @@ def test_focal_from_a_rotation_homography_and_its_degenerate_cases():
     K2 = cm.intrinsics(900.0, (480, 640))
     H = rotation_homography(K, rotation_from_axis_angle([0.05, 0.35, 0.0]), K2)
     assert np.allclose(cm.focal_from_homography(H, (480, 640), (480, 640)), (650, 900))
+    # long lenses: the cut-off is on H in units of the image diagonal, so it does not depend on f
+    # (on the Frobenius-normalised H in pixels, h6 h7 at f = 1000 px is under 1e-12)
+    for f in (1000.0, 2000.0, 4000.0):
+        for w in ([0.0, np.radians(5), 0.0], [0.2, 0.4, 0.05], [np.radians(45), 0.0, 0.0]):
+            H = rotation_homography(cm.intrinsics(f, (600, 800)), rotation_from_axis_angle(w))
+            assert np.allclose(cm.focal_from_homography(H, (600, 800), (600, 800)), f, rtol=1e-6)
+    # an affine map (no perspective terms at all): f -> infinity, undetermined
+    assert np.isnan(
+        cm.focal_from_homography(
+            [[1.01, 0.06, -55], [-0.07, 1.01, 66], [0, 0, 1]], (480, 640), (480, 640)
+        )
+    ).all()
     # a pure translation (shift) constrains nothing: NaN, never a made-up number
     assert np.isnan(
         cm.focal_from_homography([[1, 0, 30], [0, 1, 0], [0, 0, 1]], (480, 640), (480, 640))

@@ -127,9 +127,20 @@ def focal_from_homography(
               \quad\text{or}\quad f_s^2 = \frac{h_5^2 - h_2^2}{h_0^2 + h_1^2 - h_3^2 - h_4^2}.
 
     Of each pair of formulas the one with the larger denominator is used (the other can be
-    0/0: a pure pan has :math:`h_7 = 0`); a negative or undefined value means this pair
-    does not constrain that focal (NaN). The method of Szeliski & Shum [1]_, as OpenCV's
+    0/0: a pure pan has :math:`h_7 = 0`); a negative value means this pair does not
+    constrain that focal (NaN). The method of Szeliski & Shum [1]_, as OpenCV's
     ``detail::focalsFromHomography`` has it.
+
+    *Units.* In pixels the entries of :math:`\hat H` differ by :math:`f^2` (:math:`h_2 \sim f`,
+    :math:`h_6 \sim 1/f`), so a test "denominator near 0" on them would depend on f: at
+    f = 1000 px a genuine :math:`h_6 h_7` of the Frobenius-normalised :math:`\hat H` is
+    under :math:`10^{-12}`. The formulas are therefore evaluated on
+    :math:`\hat H` in units of a nominal focal length, each image's diagonal
+    :math:`s` (:math:`\hat H = K_{0,d}^{-1} H K_{0,s}` with :math:`K_0` = ``intrinsics(s, shape)``),
+    which gives :math:`(f/s)^2`; for any plausible lens (f within 0.1 to 10 diagonals) its
+    entries are of one size. On that normalised matrix a chosen denominator under
+    :math:`10^{-12}` is round-off, not perspective: the pair is affine to working precision
+    (:math:`f \to \infty`), undetermined (NaN).
 
     Parameters
     ----------
@@ -165,8 +176,8 @@ def focal_from_homography(
     [700.0, 700.0]
     """
     Hm = check_matrix(H, (3, 3), "H")
-    Cs, Cd = intrinsics(1.0, shape_src), intrinsics(1.0, shape_dst)
-    h = (np.linalg.inv(Cd) @ Hm @ Cs).ravel()
+    s_src, s_dst = (float(np.hypot(*shape[:2])) for shape in (shape_src, shape_dst))
+    h = (np.linalg.inv(intrinsics(s_dst, shape_dst)) @ Hm @ intrinsics(s_src, shape_src)).ravel()
     h = h / np.linalg.norm(h)
 
     def pick(n1, d1, n2, d2):
@@ -174,13 +185,13 @@ def focal_from_homography(
         v = n / d if abs(d) > 1e-12 else float("nan")
         return float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan")
 
-    f_dst = pick(
+    f_dst = s_dst * pick(
         -(h[0] * h[1] + h[3] * h[4]),
         h[6] * h[7],
         h[0] ** 2 + h[3] ** 2 - h[1] ** 2 - h[4] ** 2,
         h[7] ** 2 - h[6] ** 2,
     )
-    f_src = pick(
+    f_src = s_src * pick(
         -h[2] * h[5],
         h[0] * h[3] + h[1] * h[4],
         h[5] ** 2 - h[2] ** 2,

@@ -22,10 +22,11 @@ from .._core import Exercise, Mistake, first_mistake, register_exercise
 def _focal_reference(H, shape):
     """(f_from, f_to): what H's rows and its columns give, as an array.
 
-    camlab's ``stitching.cameras.focal_from_homography`` computes the same but calls a denominator
-    under 1e-12 (of the normalised H) undetermined, to keep near-translations from voting; with
-    f over about 1000 px a genuine h7^2 - h6^2 is that small, so the check takes the formulas as
-    they are.
+    camlab's ``stitching.cameras.focal_from_homography`` gives the same numbers on every test input:
+    it evaluates the formulas on H in units of the image diagonal and calls a denominator under
+    1e-12 of that normalised matrix undetermined (round-off: an affine pair). On the centred H in
+    pixels, as here, no such cut-off is right: its entries differ by f^2, and at f = 1020 px
+    (input 4) the genuine h7^2 - h6^2 of the normalised matrix is 6.7e-13 (:func:`_cut_off_hint`).
     """
     return np.array(focal_from_rotation_homography(H, shape), dtype=float)
 
@@ -449,6 +450,50 @@ def _zero_over_zero_hint(zz: list[str], got: float, which: str) -> str:
     )
 
 
+def _cut_off_hint(H, shape, g: float, e: float, keys, which: str) -> str | None:
+    """The cause of a NaN where the deciding formula is defined but its denominator is tiny; else None.
+
+    A student who guards the division with a fixed cut-off (``abs(d) > 1e-12``) returns NaN here: the
+    centred H's entries in pixels differ by f^2 (h2 and h5 grow like f, h6 and h7 shrink like 1/f), so
+    for a long lens a genuine denominator of the normalised matrix is that small. A cut-off fails first
+    on the input with the smallest denominator so far; if the deciding formula decides here for the first
+    time, a sign flip in it gives the same NaN, and the hint names both.
+    """
+    if not (np.isnan(g) and np.isfinite(e)):
+        return None
+    k = _decides(H, shape, keys)
+    d = _denominators(H, shape)[k]
+    earlier = _earlier_inputs(H)
+    if earlier is None or not 0 < abs(d) < 1e-9:
+        return None
+    if any(
+        min(abs(dk[_decides(Hk, sk, ks)]) for ks in (_ROWS, _COLUMNS)) <= abs(d)
+        for Hk, sk, dk in earlier
+    ):
+        return None  # a cut-off would have failed on an earlier input
+    cut_off = (
+        f"the formula with the larger denominator, {_FOCAL_ZERO_OVER_ZERO[k][0]}, is defined here: its denominator "
+        f"is {d:.2g} (on the centred H divided by its norm) and it gives f = {e:.1f} px. If you guard the division "
+        "with a fixed cut-off such as abs(d) > 1e-12, drop it: in pixels the centred H's entries differ by f^2 "
+        "(h2, h5 grow like f; h6, h7 shrink like 1/f), so for focal lengths of several hundred pixels a genuine "
+        "denominator is that small. Return NaN only where f^2 <= 0 (camlab's library first measures H in units of "
+        "the image diagonal, where a cut-off means round-off)."
+    )
+    if any(_decides(Hk, sk, keys) == k for Hk, sk, _ in earlier):
+        return f"you returned NaN for {which}, but {cut_off}"
+    return f"you returned NaN for {which}: either {_SIGN_HINT} Or: {cut_off}"
+
+
+def _earlier_inputs(H):
+    """(H, shape, denominators) of the check's inputs before H; None if H is not one of them."""
+    out = []
+    for Hk, shape in _focal_cases():
+        if np.array_equal(Hk, np.asarray(H, float)):
+            return out
+        out.append((Hk, shape, _denominators(Hk, shape)))
+    return None
+
+
 def _larger_denominator_student(slip: str, orthogonality_only=False, equal_length_only=False):
     """A student who follows the prompt with ``slip``, or uses one kind of formula.
 
@@ -586,6 +631,13 @@ def _pair_shape_hint(got, expected) -> str | None:
         for v, e in zip(pair, expected, strict=True)
     ):
         return "those are f squared: the formulas give f^2; take the square roots."
+    if np.isfinite([f_from, f_to]).all() and np.allclose(pair, (1 / f_to, 1 / f_from), rtol=1e-5):
+        return (
+            f"you returned (1/f_to, 1/f_from) = ({pair[0]:.6g}, {pair[1]:.6g}) = (1/{f_to:.1f}, 1/{f_from:.1f}): the "
+            "formulas ran on the centred H transposed. H_c^T = diag(1/f_from, 1/f_from, 1) R^T diag(f_to, f_to, 1) has "
+            "the focal lengths inverted and their roles swapped; take h0 ... h8 from H_c itself, row by row "
+            "(h = H_c.ravel(), not H_c.T.ravel() nor H_c.ravel(order='F'))."
+        )
     return None
 
 
@@ -641,6 +693,9 @@ def _focal_diagnosis(args, got, expected) -> str:
         return f"{which} is f squared: the formulas give f^2; take the square root."
     h, w = shape[:2]
     context = SimpleNamespace(H=H, shape=shape, w=w, h=h, expected=e, keys=keys)
+    cut = _cut_off_hint(H, shape, g, e, keys, which)
+    if cut:
+        return cut
     zz = _zero_over_zero(H, shape, keys)
     if zz:
         values = {k: v for k, v in _focal_formulas(H, shape).items() if k in keys}
