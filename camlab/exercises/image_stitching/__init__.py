@@ -1,7 +1,8 @@
 """Exercises for lesson 09, image stitching.
 
 The canvas bounds (:mod:`.canvas_box`), feathering weights (:mod:`.feather_weights`), the focal
-length from a rotation-only homography (:mod:`.focal`) and gain compensation's normal equations
+length from a rotation-only homography (:mod:`.focal`, its formulas' denominators in
+:mod:`.focal_denominators`) and gain compensation's normal equations
 (:mod:`.gains`).
 """
 

@@ -15,6 +15,13 @@ from types import SimpleNamespace
 import numpy as np
 
 from .._core import Exercise, Mistake, first_mistake, register_exercise
+from .focal_denominators import (
+    FORMULAS,
+    decides,
+    denominators,
+    zero_over_zero,
+    zero_over_zero_hint,
+)
 
 # ----------------------------------------------------------------------------- focal from a rotation homography
 
@@ -378,47 +385,6 @@ def _slipped_student(slip: str, formulas=("c1", "c2", "r1", "r2")):
     return student
 
 
-_FOCAL_ZERO_OVER_ZERO = {
-    "c1": ("-(h0 h1 + h3 h4) / (h6 h7) (columns orthogonal)", "h6 or h7 is 0"),
-    "c2": ("(h0^2 + h3^2 - h1^2 - h4^2) / (h7^2 - h6^2) (columns equally long)", "h6 = +-h7"),
-    "r1": ("-h2 h5 / (h0 h3 + h1 h4) (rows orthogonal)", "h2 or h5 is 0"),
-    "r2": ("(h5^2 - h2^2) / (h0^2 + h1^2 - h3^2 - h4^2) (rows equally long)", "h2 = +-h5"),
-}
-"""Each formula and when it is 0/0 on a rotation (numerator and denominator both exactly 0)."""
-
-
-def _centred_entries(H, shape):
-    h, w = shape[:2]
-    C = np.array([[1.0, 0, (w - 1) / 2], [0, 1, (h - 1) / 2], [0, 0, 1]])
-    Hc = np.linalg.inv(C) @ np.asarray(H, float) @ C
-    return (Hc / np.linalg.norm(Hc)).ravel()
-
-
-def _denominators(H, shape) -> dict[str, float]:
-    h0, h1, h2, h3, h4, h5, h6, h7, _ = _centred_entries(H, shape)
-    return {
-        "c1": h6 * h7,
-        "c2": h7**2 - h6**2,
-        "r1": h0 * h3 + h1 * h4,
-        "r2": h0**2 + h1**2 - h3**2 - h4**2,
-    }
-
-
-_PARTNER = {"c1": "c2", "c2": "c1", "r1": "r2", "r2": "r1"}
-
-
-def _zero_over_zero(H, shape, keys=("c1", "c2", "r1", "r2")) -> list[str]:
-    """The formulas among ``keys`` that are 0/0 on this H: a denominator at round-off level next to its partner's."""
-    d = _denominators(H, shape)
-    return [k for k in keys if abs(d[k]) < 1e-6 * abs(d[_PARTNER[k]])]  # noise of 1e-9 leaves ~1e-8
-
-
-def _decides(H, shape, keys) -> str:
-    """Which formula of the pair ``keys`` has the larger denominator on this H (the one the rule uses)."""
-    d = _denominators(H, shape)
-    return keys[0] if abs(d[keys[0]]) > abs(d[keys[1]]) else keys[1]
-
-
 def _zero_over_zero_answers(H, shape, zz: list[str], keys) -> list[float]:
     """What a student gets whose 0/0 formulas came out as 0 or inf (their own round-off), combined as usual.
 
@@ -437,19 +403,6 @@ def _zero_over_zero_answers(H, shape, zz: list[str], keys) -> list[float]:
     return out
 
 
-def _zero_over_zero_hint(zz: list[str], got: float, which: str) -> str:
-    what = "NaN" if np.isnan(got) else ("inf" if np.isinf(got) else f"{got:.6g}")
-    listed = "; ".join(
-        f"{_FOCAL_ZERO_OVER_ZERO[k][0]} is 0/0 because {_FOCAL_ZERO_OVER_ZERO[k][1]}" for k in zz
-    )
-    return (
-        f"you returned {what} for {which} on a turn where {listed}. 0/0 is round-off divided by round-off (NaN, "
-        "inf or any number), not a slip in your indices: in each pair use the formula whose denominator is larger "
-        "in magnitude, and drop neither by a filter such as f^2 > 0: on an estimated H a 0/0 is a finite, "
-        "arbitrary number (a pure pan has h7 = 0, a pure tilt h6 = 0, a turn about a diagonal axis h6 = +-h7)."
-    )
-
-
 def _cut_off_hint(H, shape, g: float, e: float, keys, which: str) -> str | None:
     """The cause of a NaN where the deciding formula is defined but its denominator is tiny; else None.
 
@@ -461,25 +414,25 @@ def _cut_off_hint(H, shape, g: float, e: float, keys, which: str) -> str | None:
     """
     if not (np.isnan(g) and np.isfinite(e)):
         return None
-    k = _decides(H, shape, keys)
-    d = _denominators(H, shape)[k]
+    k = decides(H, shape, keys)
+    d = denominators(H, shape)[k]
     earlier = _earlier_inputs(H)
     if earlier is None or not 0 < abs(d) < 1e-9:
         return None
     if any(
-        min(abs(dk[_decides(Hk, sk, ks)]) for ks in (_ROWS, _COLUMNS)) <= abs(d)
+        min(abs(dk[decides(Hk, sk, ks)]) for ks in (_ROWS, _COLUMNS)) <= abs(d)
         for Hk, sk, dk in earlier
     ):
         return None  # a cut-off would have failed on an earlier input
     cut_off = (
-        f"the formula with the larger denominator, {_FOCAL_ZERO_OVER_ZERO[k][0]}, is defined here: its denominator "
+        f"the formula with the larger denominator, {FORMULAS[k][0]}, is defined here: its denominator "
         f"is {d:.2g} (on the centred H divided by its norm) and it gives f = {e:.1f} px. If you guard the division "
         "with a fixed cut-off such as abs(d) > 1e-12, drop it: in pixels the centred H's entries differ by f^2 "
         "(h2, h5 grow like f; h6, h7 shrink like 1/f), so for focal lengths of several hundred pixels a genuine "
         "denominator is that small. Return NaN only where f^2 <= 0 (camlab's library first measures H in units of "
         "the image diagonal, where a cut-off means round-off)."
     )
-    if any(_decides(Hk, sk, keys) == k for Hk, sk, _ in earlier):
+    if any(decides(Hk, sk, keys) == k for Hk, sk, _ in earlier):
         return f"you returned NaN for {which}, but {cut_off}"
     return f"you returned NaN for {which}: either {_SIGN_HINT} Or: {cut_off}"
 
@@ -490,7 +443,7 @@ def _earlier_inputs(H):
     for Hk, shape in _focal_cases():
         if np.array_equal(Hk, np.asarray(H, float)):
             return out
-        out.append((Hk, shape, _denominators(Hk, shape)))
+        out.append((Hk, shape, denominators(Hk, shape)))
     return None
 
 
@@ -505,7 +458,7 @@ def _larger_denominator_student(slip: str, orthogonality_only=False, equal_lengt
         f2 = _focal_formulas(H, shape, slip, squared=True)
         out = []
         for keys in (_ROWS, _COLUMNS):
-            k = _decides(H, shape, keys)
+            k = decides(H, shape, keys)
             if orthogonality_only or equal_length_only:
                 k = keys[0] if orthogonality_only else keys[1]
             v = f2[k]
@@ -696,7 +649,7 @@ def _focal_diagnosis(args, got, expected) -> str:
     cut = _cut_off_hint(H, shape, g, e, keys, which)
     if cut:
         return cut
-    zz = _zero_over_zero(H, shape, keys)
+    zz = zero_over_zero(H, shape, keys)
     if zz:
         values = {k: v for k, v in _focal_formulas(H, shape).items() if k in keys}
         with_zz = [
@@ -710,7 +663,7 @@ def _focal_diagnosis(args, got, expected) -> str:
         far = np.isfinite(g) and g > 0 and abs(np.log(g / e)) > np.log(10)
         if (
             not np.isfinite(g)
-            and not (_decides(H, shape, keys) not in zz and np.isnan(g))
+            and not (decides(H, shape, keys) not in zz and np.isnan(g))
             or far
             or (
                 _shows_slip(g, with_zz)
@@ -718,7 +671,7 @@ def _focal_diagnosis(args, got, expected) -> str:
             )
             or _shows_slip(g, _zero_over_zero_answers(H, shape, zz, keys))
         ):
-            return _zero_over_zero_hint(zz, g, which)
+            return zero_over_zero_hint(zz, g, which)
     if np.isnan(g):
         hint = _nan_hint(context, pair, j, expected, which)
         if hint:
@@ -747,7 +700,7 @@ def _focals_from_squares(f2: dict, H, shape) -> tuple:
     """(f_from, f_to) from the squared formulas ``f2``: each group's deciding formula, NaN if <= 0."""
     out = []
     for keys in (_ROWS, _COLUMNS):
-        v = f2[_decides(H, shape, keys)]
+        v = f2[decides(H, shape, keys)]
         out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
     return tuple(out)
 
@@ -781,7 +734,7 @@ def _sentinel_student(value):
         f2 = _focal_formulas(H, shape, squared=True)
         out = []
         for keys in (_ROWS, _COLUMNS):
-            v = f2[_decides(H, shape, keys)]
+            v = f2[decides(H, shape, keys)]
             if v > 0:
                 out.append(float(np.sqrt(v)))
             else:
