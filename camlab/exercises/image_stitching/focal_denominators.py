@@ -27,7 +27,20 @@ def _centred_entries(H, shape):
 
 
 def denominators(H, shape) -> dict[str, float]:
-    """The four formulas' denominators on the centred H divided by its norm (scale-free)."""
+    """The four formulas' denominators on the centred H divided by its norm (scale-free).
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels.
+    shape : tuple
+        The image's shape, (h, w, ...): its centre ((w - 1) / 2, (h - 1) / 2) is the origin.
+
+    Returns
+    -------
+    dict
+        ``{"c1": h6 h7, "c2": h7^2 - h6^2, "r1": h0 h3 + h1 h4, "r2": h0^2 + h1^2 - h3^2 - h4^2}``.
+    """
     h0, h1, h2, h3, h4, h5, h6, h7, _ = _centred_entries(H, shape)
     return {
         "c1": h6 * h7,
@@ -41,19 +54,64 @@ _PARTNER = {"c1": "c2", "c2": "c1", "r1": "r2", "r2": "r1"}
 
 
 def zero_over_zero(H, shape, keys=("c1", "c2", "r1", "r2")) -> list[str]:
-    """The formulas among ``keys`` that are 0/0 on this H: a denominator at round-off level next to its partner's."""
+    """The formulas among ``keys`` that are 0/0 on this H: a denominator at round-off level next to its partner's.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels.
+    shape : tuple
+        The image's shape, (h, w, ...).
+    keys : sequence of str
+        The formulas to test, among ``"c1", "c2", "r1", "r2"``.
+
+    Returns
+    -------
+    list of str
+        The 0/0 formulas, in the order of ``keys``.
+    """
     d = denominators(H, shape)
     return [k for k in keys if abs(d[k]) < 1e-6 * abs(d[_PARTNER[k]])]  # noise of 1e-9 leaves ~1e-8
 
 
 def decides(H, shape, keys) -> str:
-    """Which formula of the pair ``keys`` has the larger denominator on this H (the one the rule uses)."""
+    """Which formula of the pair ``keys`` has the larger denominator on this H (the one the rule uses).
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels.
+    shape : tuple
+        The image's shape, (h, w, ...).
+    keys : tuple of str
+        A pair: ``("r1", "r2")`` (the rows') or ``("c1", "c2")`` (the columns').
+
+    Returns
+    -------
+    str
+        The key of the formula with the larger denominator in magnitude.
+    """
     d = denominators(H, shape)
     return keys[0] if abs(d[keys[0]]) > abs(d[keys[1]]) else keys[1]
 
 
 def zero_over_zero_hint(zz: list[str], got: float, which: str) -> str:
-    """The feedback for a student whose answer came from a 0/0 formula (the ones in ``zz``)."""
+    """The feedback for a student whose answer came from a 0/0 formula (the ones in ``zz``).
+
+    Parameters
+    ----------
+    zz : list of str
+        The 0/0 formulas (:func:`zero_over_zero`).
+    got : float
+        The student's answer.
+    which : str
+        Which answer it is, for the message (``"f_from"`` or ``"f_to"``, with its input).
+
+    Returns
+    -------
+    str
+        The hint: why 0/0 is no slip in the indices, and the larger-denominator rule.
+    """
     what = "NaN" if np.isnan(got) else ("inf" if np.isinf(got) else f"{got:.6g}")
     listed = "; ".join(f"{FORMULAS[k][0]} is 0/0 because {FORMULAS[k][1]}" for k in zz)
     return (
