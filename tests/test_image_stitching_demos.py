@@ -370,6 +370,41 @@ def test_focal_check_names_a_sign_flip_in_any_one_formula(formula):
         ex.check_focal_from_rotation_homography(_flipped(formula))
 
 
+def _box_student(rounding="ceil", route="numpy"):
+    """A student's canvas_box: the corners mapped by ``route``, the box rounded by ``rounding``."""
+    import cv2
+
+    def student(Hs, shapes):
+        pts = []
+        for H, shape in zip(Hs, shapes, strict=True):
+            h, w = shape[:2]
+            H = np.asarray(H, float)
+            corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
+            if route == "cv2":  # divides by w itself, so a negative H needs nothing more
+                pts.append(cv2.perspectiveTransform(corners[None], H)[0])
+                continue
+            if route == "unit norm":
+                H = H / np.linalg.norm(H)
+            dtype = np.float32 if route == "float32" else float
+            c = np.c_[corners, np.ones(4)].astype(dtype) @ H.T.astype(dtype)
+            pts.append(c[:, :2] / c[:, 2:])
+        lo, hi = np.min(pts, axis=(0, 1)), np.max(pts, axis=(0, 1))
+        top = {"ceil": np.ceil(hi), "floor + 1": np.floor(hi) + 1, "int + 1": hi.astype(int) + 1}
+        return np.array([np.floor(lo), top[rounding]], float)
+
+    return student
+
+
+@pytest.mark.parametrize("route", ["numpy", "cv2", "float32", "unit norm"])
+def test_canvas_box_check_passes_every_right_route_and_names_floor_plus_one(route, capsys):
+    """A corner exactly on a pixel (the reference image, H = I) tells np.ceil from floor(max) + 1."""
+    assert ex.check_canvas_box(_box_student("ceil", route)).passed
+    assert "correct on all 7" in capsys.readouterr().out
+    for rounding in ("floor + 1", "int + 1"):
+        with pytest.raises(AssertionError, match=r"(?s)test input 7 of 7.*floor\(max\) \+ 1"):
+            ex.check_canvas_box(_box_student(rounding, route))
+
+
 def test_shape_unpacked_without_channels_gets_the_hint():
     from camlab.stitching import feather_weights
     from camlab.warp import canvas_box
