@@ -26,6 +26,31 @@ def test_feature_matches_ratio_lets_wrong_matches_in():
     assert mutual["wrong"] < d.state["wrong"]
 
 
+def test_feature_matches_keypoints_lie_light_under_the_lines_and_the_key_names_the_drawing():
+    """The keypoints must not bury the red dashed wrong matches; the key says what is drawn."""
+    d = demos.feature_matches()
+    ax = d.view._animated[0].axes
+    kps = [c for c in ax.collections if c.get_offsets().shape[0] > 100]  # the two keypoint sets
+    lines = [c for c in ax.collections if c not in kps]  # good, bad, the dropped and their rim
+    assert len(kps) == 2 and len(lines) == 4
+    assert max(k.get_zorder() for k in kps) < min(c.get_zorder() for c in lines)
+
+    def dark_pixels():
+        return int((d.view.pixels()[..., :3].max(axis=2) < 60).sum())
+
+    d.set(keypoints=False)
+    without = dark_pixels()
+    d.set(keypoints=True)
+    assert dark_pixels() < 1.05 * without  # no black rings: 1900 haloed circles added 68 % dark ink
+
+    d.set(mutual=True)
+    assert "black-edged grey dashes" in d.view.fig.axes[0].get_title()
+    rim, dropped = (c for c in lines if c.get_zorder() == 2.5)
+    grey, black = dropped.get_edgecolor()[0][:3], rim.get_edgecolor()[0][:3]
+    assert np.ptp(grey) == 0 and 0.4 < grey[0] < 0.8 and not black.any()
+    assert rim.get_linewidth()[0] > dropped.get_linewidth()[0]  # the black shows as the grey's edge
+
+
 def test_thin_matches_keeps_the_true_share():
     import numpy as np
 
