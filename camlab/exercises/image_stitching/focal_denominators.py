@@ -27,7 +27,20 @@ def _centred_entries(H, shape):
 
 
 def denominators(H, shape) -> dict[str, float]:
-    """The four formulas' denominators on the centred H divided by its norm (scale-free)."""
+    """The four formulas' denominators on the centred H divided by its norm (scale-free).
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels, at any scale.
+    shape : tuple of int
+        The photos' shape (height, width[, channels]); the principal point is its centre.
+
+    Returns
+    -------
+    dict of str to float
+        ``"c1"``, ``"c2"`` (the columns' formulas) and ``"r1"``, ``"r2"`` (the rows').
+    """
     h0, h1, h2, h3, h4, h5, h6, h7, _ = _centred_entries(H, shape)
     return {
         "c1": h6 * h7,
@@ -41,19 +54,64 @@ _PARTNER = {"c1": "c2", "c2": "c1", "r1": "r2", "r2": "r1"}
 
 
 def zero_over_zero(H, shape, keys=("c1", "c2", "r1", "r2")) -> list[str]:
-    """The formulas among ``keys`` that are 0/0 on this H: a denominator at round-off level next to its partner's."""
+    """The formulas among ``keys`` that are 0/0 on this H: a denominator at round-off level next to its partner's.
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels, at any scale.
+    shape : tuple of int
+        The photos' shape (height, width[, channels]).
+    keys : sequence of str
+        The formulas to test (of ``"c1"``, ``"c2"``, ``"r1"``, ``"r2"``).
+
+    Returns
+    -------
+    list of str
+        Those whose denominator is under 1e-6 of its partner's.
+    """
     d = denominators(H, shape)
     return [k for k in keys if abs(d[k]) < 1e-6 * abs(d[_PARTNER[k]])]  # noise of 1e-9 leaves ~1e-8
 
 
 def decides(H, shape, keys) -> str:
-    """Which formula of the pair ``keys`` has the larger denominator on this H (the one the rule uses)."""
+    """Which formula of the pair ``keys`` has the larger denominator on this H (the one the rule uses).
+
+    Parameters
+    ----------
+    H : (3, 3) array_like
+        The homography, pixels, at any scale.
+    shape : tuple of int
+        The photos' shape (height, width[, channels]).
+    keys : (str, str)
+        The pair: the rows' ``("r1", "r2")`` or the columns' ``("c1", "c2")``.
+
+    Returns
+    -------
+    str
+        The key of the formula with the larger denominator in magnitude.
+    """
     d = denominators(H, shape)
     return keys[0] if abs(d[keys[0]]) > abs(d[keys[1]]) else keys[1]
 
 
 def zero_over_zero_hint(zz: list[str], got: float, which: str) -> str:
-    """The feedback for a student whose answer came from a 0/0 formula (the ones in ``zz``)."""
+    """The feedback for a student whose answer came from a 0/0 formula (the ones in ``zz``).
+
+    Parameters
+    ----------
+    zz : list of str
+        The 0/0 formulas (:func:`zero_over_zero`).
+    got : float
+        The student's focal, pixels (NaN or inf too).
+    which : str
+        Which focal it is, as the message names it (``"f_from (the rows)"``).
+
+    Returns
+    -------
+    str
+        The hint: 0/0 is round-off over round-off; use the formula with the larger denominator.
+    """
     what = "NaN" if np.isnan(got) else ("inf" if np.isinf(got) else f"{got:.6g}")
     listed = "; ".join(f"{FORMULAS[k][0]} is 0/0 because {FORMULAS[k][1]}" for k in zz)
     return (
