@@ -26,6 +26,31 @@ def test_feature_matches_ratio_lets_wrong_matches_in():
     assert mutual["wrong"] < d.state["wrong"]
 
 
+def test_feature_matches_keypoints_lie_light_under_the_lines_and_the_key_names_the_drawing():
+    """The keypoints must not bury the red dashed wrong matches; the key says what is drawn."""
+    d = demos.feature_matches()
+    ax = d.view._animated[0].axes
+    kps = [c for c in ax.collections if c.get_offsets().shape[0] > 100]  # the two keypoint sets
+    lines = [c for c in ax.collections if c not in kps]  # good, bad, the dropped and their rim
+    assert len(kps) == 2 and len(lines) == 4
+    assert max(k.get_zorder() for k in kps) < min(c.get_zorder() for c in lines)
+
+    def dark_pixels():
+        return int((d.view.pixels()[..., :3].max(axis=2) < 60).sum())
+
+    d.set(keypoints=False)
+    without = dark_pixels()
+    d.set(keypoints=True)
+    assert dark_pixels() < 1.05 * without  # no black rings: 1900 haloed circles added 68 % dark ink
+
+    d.set(mutual=True)
+    assert "black-edged grey dashes" in d.view.fig.axes[0].get_title()
+    rim, dropped = (c for c in lines if c.get_zorder() == 2.5)
+    grey, black = dropped.get_edgecolor()[0][:3], rim.get_edgecolor()[0][:3]
+    assert np.ptp(grey) == 0 and 0.4 < grey[0] < 0.8 and not black.any()
+    assert rim.get_linewidth()[0] > dropped.get_linewidth()[0]  # the black shows as the grey's edge
+
+
 def test_thin_matches_keeps_the_true_share():
     import numpy as np
 
@@ -368,6 +393,41 @@ def test_focal_check_names_a_sign_flip_in_any_one_formula(formula):
 
     with pytest.raises(AssertionError, match="sign flip"):
         ex.check_focal_from_rotation_homography(_flipped(formula))
+
+
+def _box_student(rounding="ceil", route="numpy"):
+    """A student's canvas_box: the corners mapped by ``route``, the box rounded by ``rounding``."""
+    import cv2
+
+    def student(Hs, shapes):
+        pts = []
+        for H, shape in zip(Hs, shapes, strict=True):
+            h, w = shape[:2]
+            H = np.asarray(H, float)
+            corners = np.array([[0, 0], [w - 1, 0], [w - 1, h - 1], [0, h - 1]], float)
+            if route == "cv2":  # divides by w itself, so a negative H needs nothing more
+                pts.append(cv2.perspectiveTransform(corners[None], H)[0])
+                continue
+            if route == "unit norm":
+                H = H / np.linalg.norm(H)
+            dtype = np.float32 if route == "float32" else float
+            c = np.c_[corners, np.ones(4)].astype(dtype) @ H.T.astype(dtype)
+            pts.append(c[:, :2] / c[:, 2:])
+        lo, hi = np.min(pts, axis=(0, 1)), np.max(pts, axis=(0, 1))
+        top = {"ceil": np.ceil(hi), "floor + 1": np.floor(hi) + 1, "int + 1": hi.astype(int) + 1}
+        return np.array([np.floor(lo), top[rounding]], float)
+
+    return student
+
+
+@pytest.mark.parametrize("route", ["numpy", "cv2", "float32", "unit norm"])
+def test_canvas_box_check_passes_every_right_route_and_names_floor_plus_one(route, capsys):
+    """A corner exactly on a pixel (the reference image, H = I) tells np.ceil from floor(max) + 1."""
+    assert ex.check_canvas_box(_box_student("ceil", route)).passed
+    assert "correct on all 7" in capsys.readouterr().out
+    for rounding in ("floor + 1", "int + 1"):
+        with pytest.raises(AssertionError, match=r"(?s)test input 7 of 7.*floor\(max\) \+ 1"):
+            ex.check_canvas_box(_box_student(rounding, route))
 
 
 def test_shape_unpacked_without_channels_gets_the_hint():

@@ -195,10 +195,9 @@ def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
         assert p.reason == "" and p.image.dtype == np.uint8 and p.image.max() > 50
         h, w = p.image.shape[:2]
         assert h <= 220 and w <= 560  # within the box
-        if (
-            proj != "spherical"
-        ):  # the plane fits on its own; the cylinder, the taller, sets the curved scale
-            assert h >= 219 or w >= 559  # touching one side
+        # the plane fits on its own; the widest cylinder (six views) sets the curved scale
+        if proj == "planar" or (n, proj) == (6, "cylindrical"):
+            assert h >= 216 or w >= 556  # touching one side, to the canvas's whole-pixel rounding
         assert abs(w / h - p.shape[1] / p.shape[0]) < 0.02 * w / h  # the canvas' aspect ratio kept
     for n in range(2, 7):  # the cylinder and the sphere at one scale: the same px per canvas px
         cyl, sph = previews[(n, "cylindrical")], previews[(n, "spherical")]
@@ -211,6 +210,22 @@ def test_canvas_previews_the_plane_cannot_hold_a_wide_turn():
     assert (
         previews[(3, "planar")].shape[1] > 4 * previews[(3, "cylindrical")].shape[1]
     )  # the plane stretches
+
+
+@pytest.mark.parametrize("box", [(220, 560), (300, 780)])  # reduced from 3/4 f; rendered larger
+def test_canvas_previews_draw_the_curved_canvases_at_one_scale_for_every_view_count(box):
+    """The views slider changes the turn, not the magnification: the same cylinder, equally high."""
+    previews = pe.canvas_previews(box)
+    curved = [previews[(n, p)] for n in range(2, 7) for p in ("cylindrical", "spherical")]
+    assert len({p.scale for p in curved}) == 1  # one scale ...
+    k = curved[0].scale
+    cylinders = [previews[(n, "cylindrical")] for n in range(2, 7)]
+    assert {c.shape[0] for c in cylinders} == {215}  # ... for one 215 px high cylinder
+    assert len({c.image.shape[0] for c in cylinders}) == 1  # drawn equally high at every view count
+    assert abs(cylinders[0].image.shape[0] - k * 215) <= 3
+    # the widest (six views) fits the box: that sets the scale, and no fewer views are drawn larger
+    assert box[1] - 4 <= cylinders[-1].image.shape[1] <= box[1]
+    assert [c.image.shape[1] for c in cylinders] == sorted(c.image.shape[1] for c in cylinders)
 
 
 def test_canvas_previews_other_sizes_and_bad_sizes():

@@ -67,10 +67,12 @@ def choose_model(
     """A turning camera (rotations), or a plane seen from several places (homographies).
 
     The plane replaces the rotation when the rotation fits badly and the plane clearly better
-    (residual below 0.7 times the rotation's), or when the views are under about 30 degrees
-    wide (focal over 2 diagonals), where a flat scene passes for a rotation and its adjustment
-    crawls. ``tolerances`` are the RMS residuals (pixels) above which the rotation, then the
-    plane, is judged not to fit; residuals are in full-resolution pixels and features found on
+    (residual below 0.7 times the rotation's), or when the focal length the pairs imply (their
+    median) is over 2 image diagonals (the median image's), that is, the views are under
+    2 atan(1/4) = 28.1 degrees across the diagonal, where a flat scene passes for a rotation and
+    its adjustment crawls (only without a known ``K``, and for ``"auto"`` or ``"planar"``).
+    ``tolerances`` are the RMS residuals (pixels) above which the rotation, then the plane, is
+    judged not to fit; residuals are in full-resolution pixels and features found on
     copies ``coarse`` times smaller are that much less precise, so the tolerances grow with it.
     Warns (for :func:`camlab.stitching.stitch`) when neither model fits.
 

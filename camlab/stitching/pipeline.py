@@ -9,11 +9,12 @@ Each stage is one function below, called in this order by :func:`stitch`:
 4. :func:`camlab.stitching.model.choose_model`: a **rotation** (:func:`camlab.stitching.cameras.estimate_cameras`: focal
    from the homographies, spanning-tree rotations, bundle adjustment, wave correction)
    explains a camera turning about its centre. If its residual is large, or the focal comes
-   out longer than 2 image diagonals (views under about 30 degrees wide, where a flat scene
-   passes for a rotation), the **plane** model is tried: the images are views of a plane (a
-   map, a document, a facade from several positions) and every homography is refined
-   together (:func:`camlab.stitching.cameras.adjust_homographies`); it wins if its residual
-   is below 0.7 times the rotation's. If neither fits, the camera moved in front of a 3-D
+   out longer than 2 image diagonals (views under 2 atan(1/4) = 28 degrees across the
+   diagonal, where a flat scene passes for a rotation), the **plane** model is tried: the
+   images are views of a plane (a map, a document, a facade from several positions) and
+   every homography is refined together
+   (:func:`camlab.stitching.cameras.adjust_homographies`); it wins if its residual is below
+   0.7 times the rotation's. If neither fits, the camera moved in front of a 3-D
    scene: a warning gives both residuals.
 5. ``_choose_projection``: the canvas (:mod:`camlab.stitching.projections`), planar,
    cylindrical or spherical; ``"auto"`` takes the plane for planar scenes and fields of view

@@ -51,9 +51,11 @@ def _canvas_cases():
     def shift(du, dv):
         return np.array([[1.0, 0, du], [0, 1, dv], [0, 0, 1]])
 
-    # No box edge falls on a whole pixel (each is at least 0.1 px from one), so floor and ceil give the same
-    # box whatever the float round-off of a right answer (H scaled to unit norm first, say). The odd-sized
-    # image of the third input decides part of the box, so using shapes[0] for every image shows.
+    # In the first six inputs no box edge falls on a whole pixel (each is at least 0.1 px from one), so floor
+    # and ceil give the same box whatever the float round-off of a right answer (H scaled to unit norm first,
+    # say). The odd-sized image of the third input decides part of the box, so using shapes[0] for every image
+    # shows. The last input is a stitch's usual case: the reference image (H = I, exact in any float maths)
+    # decides u_max and v_max on whole pixels, so floor(max) + 1 there is one pixel too large.
     return [
         ([shift(0.3, 0.4), shift(50.6, -30.3)], [(240, 320), (240, 320)]),  # two translations
         (
@@ -77,6 +79,7 @@ def _canvas_cases():
             [-0.01 * shift(0.3, 0.4), -0.01 * rotation_homography(K, yaw(20))],
             [(240, 320), (240, 320)],
         ),
+        ([np.eye(3), shift(-50.6, -30.3)], [(240, 320), (240, 320)]),  # the reference image, H = I
     ]
 
 
@@ -218,6 +221,23 @@ _CANVAS_SLIPS = (
         "divide by w itself, not |w|: a homography's overall sign is arbitrary (H and -H are the same "
         "homography; a DLT's SVD returns either), so w can be negative at every corner, and x / |w| then "
         "mirrors the points through the origin.",
+    ),
+    Mistake(  # before "w - 1": on the last input, where this shows first, both give the same box
+        "floor(max) + 1",
+        lambda s: (
+            [
+                b
+                for b in (
+                    np.array([s.expected[0], np.floor(s.corners.max(0)) + 1]),
+                    np.array([s.expected[0], np.trunc(s.corners.max(0)) + 1]),
+                )
+                if not np.array_equal(b, s.expected)
+            ]
+            or None
+        ),
+        "the maximum rounds up with np.ceil: floor(max) + 1 (or int(max) + 1) is one pixel too large where a "
+        "corner lands exactly on a pixel, as the reference image's do here (H = I: its corner (w-1, h-1) stays "
+        "where it is). Use np.floor for the minimum and np.ceil for the maximum.",
     ),
     Mistake(
         "w - 1",
@@ -394,6 +414,7 @@ register_exercise(
             (_canvas_variant("truncated"), "truncate towards zero"),
             (_canvas_variant("truncated the whole box"), "cuts both ends"),
             (_canvas_variant("floor both"), "floored both ends"),
+            (_canvas_variant("floor(max) + 1"), "floor(max) + 1"),
             (_canvas_variant("shifted to the origin"), "after the shift T"),
             *(
                 (_canvas_variant(f"missing {c}"), f"leaves out the {c} corner")

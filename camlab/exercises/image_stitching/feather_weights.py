@@ -108,6 +108,11 @@ def _feather_values_hint(g: np.ndarray, expected: np.ndarray) -> str:
         )
     if np.allclose(g, expected + 0.5):
         return "off by half a pixel: the border is at u = -1/2 and u = W - 1/2; use u + 1/2 and W - 1/2 - u."
+    if np.allclose(g, 2 * expected):
+        return (
+            "your weights are twice the distances: 2u + 1 counts half-pixels (whole numbers, no fractions), but "
+            "the weight is the distance in pixels, u + 1/2 and W - 1/2 - u (the corner pixel weighs 1/2, not 1)."
+        )
     h, w = expected.shape
     u = np.arange(w, dtype=float)
     du = np.minimum(u + 0.5, w - 0.5 - u)
@@ -205,6 +210,12 @@ def _feather_shape_hint(shape, got: tuple, expected: tuple) -> str:
         )
     if got == expected[::-1]:
         return f"{start}: rows and columns swapped; a shape is (h, w) = (rows, columns), so h, w = shape[:2]."
+    if got[:2] == expected and len(got) == 3:  # np.zeros(shape), or a grid of the whole (h, w, 3)
+        return (
+            f"{start}: one weight per pixel, not one per colour channel, so drop the channel axis. Build an "
+            "(h, w) array from h, w = shape[:2] (np.zeros(shape) keeps the channel axis, np.zeros(shape[:2]) "
+            "does not)."
+        )
     return start + "."
 
 
@@ -235,6 +246,12 @@ def _feather_offsets(shape, a: float, b: float) -> np.ndarray:
     h, w = shape
     u, v = np.arange(w, dtype=float), np.arange(h, dtype=float)[:, None]
     return np.minimum(np.minimum(u + a, w - b - u), np.minimum(v + a, h - b - v))
+
+
+def _per_channel(shape) -> np.ndarray:
+    """The right weights repeated along a colour shape's channel axis (a slip: np.zeros(shape))."""
+    weights = st.feather_weights(shape)
+    return np.repeat(weights[..., None], shape[2], axis=2) if len(shape) == 3 else weights
 
 
 def _feather_exception_hint(exc: Exception, args: tuple) -> str:
@@ -287,6 +304,9 @@ register_exercise(
                 "shape[-2:] is (w, 3)",
             ),
             (lambda shape: st.feather_weights(shape).astype(int), "integer dtype"),
+            (_per_channel, "per colour channel"),
+            (lambda shape: 2 * st.feather_weights(shape), "counts half-pixels"),
+            (lambda shape: (2 * st.feather_weights(shape)).astype(int), "counts half-pixels"),
             (
                 lambda shape: (st.feather_weights(shape) + 0.5).astype(int),
                 "off by half a pixel: the border is at u = -1/2",

@@ -645,6 +645,11 @@ def _focal_diagnosis(args, got, expected) -> str:
     if np.isfinite(g) and np.isclose(g, e**2, rtol=1e-3):
         return f"{which} is f squared: the formulas give f^2; take the square root."
     h, w = shape[:2]
+    if np.isfinite(g) and np.isclose(g * np.hypot(w, h), e, rtol=1e-5):  # camlab's library's units
+        return (
+            f"{which} = {g:.6g} is the focal in units of the image diagonal; multiply by sqrt(w^2 + h^2) = "
+            f"{np.hypot(w, h):.1f} for pixels ({e:.1f} px)."
+        )
     context = SimpleNamespace(H=H, shape=shape, w=w, h=h, expected=e, keys=keys)
     cut = _cut_off_hint(H, shape, g, e, keys, which)
     if cut:
@@ -776,6 +781,12 @@ register_exercise(
                 "formulas give on H^-1",
             ),
             (_one_focal, "you returned one number"),
+            (
+                lambda H, shape: tuple(
+                    f / np.hypot(*shape[:2]) for f in focal_from_rotation_homography(H, shape)
+                ),
+                "in units of the image diagonal",
+            ),
             (lambda H, shape: (_one_focal(H, shape),) * 2, "same number twice"),
             (_slipped_student("half"), "half-pixel slip"),
             (_slipped_student("one-based"), "counted pixels from 1"),

@@ -344,11 +344,50 @@ def _gains_diagnosis(args, got, expected, run=None) -> str:
     if shown:
         return shown[0].hint
     N, M = _context(args, expected).N, _context(args, expected).M
+    rescaled = _rescaled_means_hint(N, M, g)
+    if rescaled:
+        return rescaled
     return (
         f"your gains do not minimise section 5's error: e(g) = {_energy(N, M, g):.6g} at your g, "
         f"{_energy(N, M, expected):.6g} at the minimum. Check each term of d e / d g_i = 0 against the "
         "derivative of e = 1/2 sum over i != j of N_ij ((g_i I_ij - g_j I_ji)^2 / sigma_N^2 + (1 - g_i)^2 "
         "/ sigma_g^2): which terms carry g_i, which g_j, and which none (those go to b)."
+    )
+
+
+def _data_weight(N, M, g) -> float | None:
+    """The factor t on the data term for which ``g`` solves section 5's equations, or None if no t fits.
+
+    Means rescaled by k (I_mean / 1000, say) scale every data term by k^2 and leave the prior as it
+    is, so ``g`` is then the solution of (t D + P) g = p with t = k^2: t is fitted by least squares
+    from D g = (p - P g) / t, then checked by solving with it.
+    """
+    N = np.array(N, dtype=float)
+    np.fill_diagonal(N, 0)
+    D = -2 * N * M * M.T / SIGMA_N**2
+    D[np.diag_indices(len(N))] = (2 * N * M**2).sum(axis=1) / SIGMA_N**2
+    p = N.sum(axis=1) / SIGMA_G**2  # the prior's diagonal P = diag(p) and right-hand side p
+    if not np.all(np.isfinite(g)) or not (Dg := D @ g).any():
+        return None
+    t = float(Dg @ (p - p * g) / (Dg @ Dg))
+    if t <= 0:
+        return None
+    with np.errstate(all="ignore"):
+        fit = np.linalg.solve(t * D + np.diag(p), p)
+    return t if _same(g, fit) else None
+
+
+def _rescaled_means_hint(N, M, g) -> str | None:
+    """Name a units slip: gains that weigh the data term k^2 times, as means rescaled by k do; else None."""
+    t = _data_weight(N, M, g)
+    if t is None or abs(np.log(t)) < 1e-3:
+        return None
+    k = float(np.sqrt(t))
+    scaled = f"multiplied by {k:.4g}" if k > 1 else f"divided by {1 / k:.4g}"
+    return (
+        f"your gains are the right ones for means {scaled} (the data term weighs {t:.3g} times what it "
+        "should against the prior): a units slip? sigma_N = 10 is in grey levels 0-255, as I_mean is; use the "
+        "means as they are, or rescale sigma_N by the same factor."
     )
 
 
@@ -447,6 +486,8 @@ register_exercise(
             (_variant("sigmas swapped"), "swapped the two sigmas"),
             (_variant("sigma_N = 1"), "you took sigma_N = 1"),
             (_variant("means in 0-1"), "divided the means by 255"),
+            (lambda N, M: _reference(N, np.asarray(M, float) / 1000), "means divided by 1000"),
+            (lambda N, M: _reference(N, 3 * np.asarray(M, float)), "means multiplied by 3"),
             (_variant("N_ii in b"), "kept it in b_i"),
             (_pairs_once, "j < i included"),
             (lambda N, M: 1 / _reference(N, M), "you returned 1/g"),

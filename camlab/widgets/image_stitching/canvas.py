@@ -583,7 +583,7 @@ def _gallery() -> dict:
                 + (
                     "(shown scaled to fit)"
                     if proj == "planar"
-                    else "(cylinder and sphere at one scale)"
+                    else "(cylinder and sphere at one scale for 2-6 views)"
                 ),
             )
     return gallery
@@ -607,8 +607,11 @@ def canvas_projections() -> Demo:
 
     The first 2-6 views of the 200-degree sweep
     (:func:`camlab.fixtures.panorama_examples.canvas_previews`), warped with their
-    bundle-adjusted cameras onto each canvas and scaled to fit :data:`BOX`. When the views
-    span too wide a turn for a plane, the figure says so instead of showing a canvas.
+    bundle-adjusted cameras onto each canvas. The cylinder and the sphere are drawn at one
+    scale for every number of views (the six views' canvas fits :data:`BOX`), so the slider
+    adds width and never changes the magnification; the plane is scaled to fit on its own.
+    When the views span too wide a turn for a plane, the figure says so instead of showing
+    a canvas.
 
     Returns
     -------

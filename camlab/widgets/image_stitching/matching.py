@@ -64,7 +64,7 @@ def feature_matches() -> Demo:
     :data:`MATCH_STRIDE` (4) are drawn, at every setting
     (:func:`camlab.plotting.stitching.thin_matches`), so the picture keeps about the true share
     of right matches and the number of lines drawn falls when matches fall. With the mutual
-    check on, every match it drops is drawn in grey dashes over the others.
+    check on, every match it drops is drawn in black-edged grey dashes over the others.
 
     Returns
     -------
@@ -74,8 +74,9 @@ def feature_matches() -> Demo:
         neighbours) and ``keypoints`` (draw the SIFT keypoints, off at first), the figure (both views side by side with their keypoints and the
         matches) and ``state`` (``matches`` the matches kept, ``wrong`` those the truth
         rejects, ``precision`` the share that is right, NaN without matches, ``drawn_right``
-        and ``drawn_wrong`` the green and red lines drawn, ``drawn_dropped`` the grey lines of
-        the matches the mutual check drops, ``keypoints_drawn`` the circles shown).
+        and ``drawn_wrong`` the green and red lines drawn, ``drawn_dropped`` the black-edged
+        grey dashes of the matches the mutual check drops, ``keypoints_drawn`` the circles
+        shown).
 
     References
     ----------
@@ -89,19 +90,16 @@ def feature_matches() -> Demo:
     art = draw_matches(ax, s.images[i], s.images[j], np.zeros((0, 2)), np.zeros((0, 2)))
     # the images stay, only the lines (and the keypoints' visibility) change. Green over red here
     # (at r near 1 the many red lines would bury the few green ones), and over both, in mid-grey
-    # dashes on a black rim (grey at display size over any photo), the matches the mutual check drops
+    # dashes, each edged in black (so they read over any photo), the matches the mutual check drops
     # (a handful: none may hide under the green bundle)
     art["good"].set_zorder(2.2)
     rim, dropped = _dropped_match_lines(ax)
     view.animate(rim, dropped, art["bad"], art["good"])
+    # keypoints under every match line (zorder 1.5 < 2) and light: thin, half-transparent, no black
+    # halo, whose ink buried the red dashes' black edges among 1900 circles
     kps = [
         draw_keypoints(
-            ax,
-            feats[k].points + [off, 0],
-            feats[k].sizes,
-            color=palette.YELLOW,
-            linewidths=0.4,  # thin: the match lines are the subject
-            path_effects=palette.halo(0.4, "black"),
+            ax, feats[k].points + [off, 0], feats[k].sizes, linewidths=0.5, alpha=0.5, zorder=1.5
         )
         for k, off in ((i, 0), (j, art["offset"]))
     ]
@@ -130,11 +128,19 @@ def feature_matches() -> Demo:
         thinned = (
             f"1 match in {every} drawn (keypoint index divisible by {every}); wrong ones dashed"
         )
-        title.set_text(
+        # the keys on a third line (after `thinned` they ran past the figure's edges), kept even when
+        # empty, as a blank first line: the layout, frozen at the first draw, leaves room for three
+        keys = []
+        if v["mutual"]:
+            keys.append(f"black-edged grey dashes: the {len(m_all.src) - n} it dropped")
+        if v["keypoints"]:
+            keys.append("yellow circles: SIFT keypoints, radius ~ their scale")
+        head = (
             f"views {i} and {j}, r = {v['ratio']:.2f}, mutual check {'on' if v['mutual'] else 'off'}: {n} matches, {n - nbad} right (green: within 2 px "
-            f"of the true H), {nbad} wrong (red)\n{thinned}"
-            + (f"; grey dashes: the {len(m_all.src) - n} it dropped" if v["mutual"] else "")
-            + ("; yellow circles: SIFT keypoints, radius ~ their scale" if v["keypoints"] else "")
+            f"of the true H), {nbad} wrong (red)"
+        )
+        title.set_text(
+            "\n".join([head, thinned, "; ".join(keys)] if keys else [" ", head, thinned])
         )
         state.update(
             matches=n,
@@ -151,7 +157,7 @@ def feature_matches() -> Demo:
             + f"\nlines drawn: {int((good & show).sum())} green, {int((~good & show).sum())} red:\n"
             f"  1 match in {every} (keypoint index divisible by {every})"
             + (
-                f"\ndropped by the mutual check: {int(gone.sum())} (grey dashes)"
+                f"\ndropped by the mutual check: {int(gone.sum())} (black-edged grey dashes)"
                 if v["mutual"]
                 else ""
             )
