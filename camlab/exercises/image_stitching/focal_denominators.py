@@ -58,10 +58,8 @@ def zero_over_zero(H, shape, keys=("c1", "c2", "r1", "r2")) -> list[str]:
 
     Parameters
     ----------
-    H : (3, 3) array_like
-        The homography, pixels.
-    shape : tuple
-        The image's shape, (h, w, ...).
+    H, shape
+        As in :func:`denominators`.
     keys : sequence of str
         The formulas to test, among ``"c1", "c2", "r1", "r2"``.
 
@@ -79,10 +77,8 @@ def decides(H, shape, keys) -> str:
 
     Parameters
     ----------
-    H : (3, 3) array_like
-        The homography, pixels.
-    shape : tuple
-        The image's shape, (h, w, ...).
+    H, shape
+        As in :func:`denominators`.
     keys : tuple of str
         A pair: ``("r1", "r2")`` (the rows') or ``("c1", "c2")`` (the columns').
 
