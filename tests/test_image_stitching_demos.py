@@ -551,3 +551,20 @@ def test_gains_slips_fail_first_on_the_dark_trio_by_percents():
     cases = G._gains_cases()
     moved = [np.abs(G._variant("no factor 2")(*a) / G._reference(*a) - 1).max() for a in cases]
     assert moved[0] > 0.02 and max(moved[1:]) < 0.002
+
+
+def test_canvas_projections_frames_the_canvas_in_grey_where_the_box_leaves_room():
+    from camlab.widgets.image_stitching.canvas import BOX, _place
+
+    white = np.full((100, 200, 4), 255, np.uint8)
+    out = _place(white)
+    y0, x0 = (BOX[0] - 100) // 2, (BOX[1] - 200) // 2
+    assert (out[y0 : y0 + 100, x0 : x0 + 200] == 255).all()  # the canvas as given, centred
+    grey = np.all(out[..., :3] == 153, axis=2)
+    rows, cols = slice(y0 - 3, y0 + 103), slice(x0 - 3, x0 + 203)
+    assert grey[y0 - 3, cols].all() and grey[y0 + 102, cols].all()
+    assert grey[rows, x0 - 3].all() and grey[rows, x0 + 202].all()
+    assert grey.sum() == 2 * 206 + 2 * 104  # the frame 3 px outside the canvas, nothing else
+    wide = _place(np.full((100, BOX[1], 4), 255, np.uint8))  # fills the width: no side frame
+    grey = np.all(wide[..., :3] == 153, axis=2)
+    assert (wide[y0 : y0 + 100, :, :3] == 255).all() and grey.sum() == 2 * BOX[1]

@@ -286,6 +286,13 @@ _GAIN_SLIPS = (
         "sigma_g^2. Skip j = i in every sum.",
     ),
     Mistake(
+        "b negated",
+        lambda c: -c.expected,
+        "every gain has the wrong sign: the right-hand side is b_i = +sum_j N_ij / sigma_g^2 (the prior "
+        "(1 - g_i)^2 / sigma_g^2 pulls g_i towards +1; its derivative -2 N_ij (1 - g_i) / sigma_g^2 moves to the "
+        "right-hand side with a plus). With b negated, A g = -b gives -g.",
+    ),
+    Mistake(
         "1/g",
         lambda c: 1 / c.expected,
         "you returned 1/g: g is the gain that multiplies each image (g_i I_ij should match g_j I_ji), not the "

@@ -559,10 +559,8 @@ def full_panorama() -> Demo:
 
 # ----------------------------------------------------------------------------- plane, cylinder, sphere
 
-BOX = (
-    300,
-    780,
-)  # (height, width) of canvas_projections' picture: within the 810 px of the other demos
+# (height, width) of canvas_projections' picture: within the 810 px of the other demos
+BOX = (300, 780)
 
 
 def _gallery() -> dict:
@@ -590,11 +588,20 @@ def _gallery() -> dict:
 
 
 def _place(rgba: np.ndarray) -> np.ndarray:
-    """An RGBA image that fits in :data:`BOX`, placed in the middle of a black BOX (the empty canvas's colour)."""
-    out = np.zeros((*BOX, 4), np.uint8)
-    out[..., 3] = 255
-    x0, y0 = (BOX[1] - rgba.shape[1]) // 2, (BOX[0] - rgba.shape[0]) // 2
-    out[y0 : y0 + rgba.shape[0], x0 : x0 + rgba.shape[1]] = rgba
+    """An RGBA image that fits in :data:`BOX`, placed in the middle of a black BOX (the empty canvas's colour).
+
+    A thin grey frame 3 px outside it marks the canvas's border, as in the other canvas demos; where
+    the canvas fills the box, that side's frame falls outside the box and is not drawn.
+    """
+    framed = np.full((rgba.shape[0] + 6, rgba.shape[1] + 6, 4), (0, 0, 0, 255), np.uint8)
+    framed[[0, -1], :, :3] = framed[:, [0, -1], :3] = 153
+    framed[3:-3, 3:-3] = rgba
+    out = np.full((*BOX, 4), (0, 0, 0, 255), np.uint8)
+    (y0, x0), (cy, cx) = [
+        np.maximum((np.subtract(BOX, framed.shape[:2]) * s) // 2, 0) for s in (1, -1)
+    ]
+    part = framed[cy : cy + BOX[0], cx : cx + BOX[1]]
+    out[y0 : y0 + part.shape[0], x0 : x0 + part.shape[1]] = part
     return out
 
 
