@@ -251,6 +251,13 @@ _CANVAS_SLIPS = (
         "pixels, (0, 0) to (w-1, h-1): pixel centres are at integers, and the canvas's pixels are too.",
     ),
     Mistake(
+        "centres at half-integers",
+        lambda s: _box(_corners(s.Hs, s.shapes, first=0.5, last=0.5)),
+        "a half-pixel slip: you mapped (1/2, 1/2) to (w - 1/2, h - 1/2), the convention with pixel centres at "
+        "half-integers. In camlab (and numpy, OpenCV's warps) pixel centres are at integers: the corner pixels "
+        "are (0, 0) and (w - 1, h - 1).",
+    ),
+    Mistake(
         "1-based",
         lambda s: _box(_corners(s.Hs, s.shapes, first=1, last=0)),
         "you counted pixels from 1: the corner pixels are at 0 and w - 1 (not 1 and w), as numpy indexes them.",

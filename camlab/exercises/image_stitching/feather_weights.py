@@ -118,6 +118,9 @@ def _feather_values_hint(g: np.ndarray, expected: np.ndarray) -> str:
     du = np.minimum(u + 0.5, w - 0.5 - u)
     if np.allclose(g, np.broadcast_to(du, (h, w))):
         return "you only used the distance to the left and right borders; take the minimum with the vertical distance too."
+    v = np.arange(h, dtype=float)
+    if np.allclose(g, np.broadcast_to(np.minimum(v + 0.5, h - 0.5 - v)[:, None], (h, w))):
+        return "you only used the distance to the top and bottom borders; take the minimum with the horizontal distance too."
     if np.allclose(g, _feather_offsets(expected.shape, 1.5, 1.5)):
         return (
             "you counted pixels from 1: the first column is u = 0 (pixel centres at 0, 1, ..., W - 1), "

@@ -54,12 +54,16 @@ def _reference(N, I_mean):
     return _gains_reference(N, I_mean, SIGMA_N, SIGMA_G)
 
 
-def _scene(exposures, overlaps, size=(240, 320), seed=0):
-    """N and I_mean for images of one scene: overlap (i, j, pixels, scene mean), each image scaled by its exposure."""
+def _scene(exposures, overlaps, size=(240, 320), seed=0, whole=(90, 140)):
+    """N and I_mean for images of one scene: overlap (i, j, pixels, scene mean), each image scaled by its exposure.
+
+    ``whole``: the range of each image's own mean (the diagonal, which the equations ignore), drawn like the
+    overlaps' so that a night scene's printed input looks like one.
+    """
     n = len(exposures)
     rng = np.random.default_rng(seed)
     N = np.diag(np.full(n, float(size[0] * size[1])))
-    M = np.diag(rng.uniform(90, 140, n) * np.asarray(exposures))
+    M = np.diag(rng.uniform(*whole, n) * np.asarray(exposures))
     for i, j, pixels, mean in overlaps:
         N[i, j] = N[j, i] = pixels
         M[i, j] = exposures[i] * mean + rng.normal(
@@ -76,7 +80,10 @@ def _gains_cases():
         # shows it plainly (on the brighter inputs after it, where the prior mainly fixes the overall
         # scale, by parts in ten thousand)
         _scene(
-            [1.0, 1.3, 0.9], [(0, 1, 6000, 9.0), (1, 2, 5000, 12.0), (0, 2, 3000, 10.0)], seed=3
+            [1.0, 1.3, 0.9],
+            [(0, 1, 6000, 9.0), (1, 2, 5000, 12.0), (0, 2, 3000, 10.0)],
+            seed=3,
+            whole=(8, 13),
         ),
         _scene([1.0, 1.3], [(0, 1, 9000, 110.0)]),  # two photos, the second 30 % brighter
         _scene(
@@ -105,6 +112,7 @@ def _solve(
     diag_in_b=False,
     coupling_sq=False,
     prior="N",
+    data_n=True,
 ):
     """Section 5's normal equations with one slip switched on (the keywords' defaults are right).
 
@@ -118,14 +126,17 @@ def _solve(
     if not diag:  # the slip "diagonal kept" leaves N_ii in: with j = i the data terms cancel, the prior's stay
         np.fill_diagonal(N, 0)
     s2 = sigma_n**2 if square else sigma_n
-    A = sign * N * factor * M * (M if coupling_sq else M.T) / s2
+    D = (
+        N if data_n else (N > 0).astype(float)
+    )  # the slip "data without N_ij": one data term per overlap
+    A = sign * D * factor * M * (M if coupling_sq else M.T) / s2
     weight = {
         "N": N,
         "count": (N > 0).astype(float),
         "one": np.eye(len(N)),
         "upper": np.triu(N, 1),
     }[prior]  # the prior's weight per (i, j)
-    A[np.diag_indices(len(N))] = (N * factor * M**2 / s2).sum(axis=1) + (
+    A[np.diag_indices(len(N))] = (D * factor * M**2 / s2).sum(axis=1) + (
         weight.sum(axis=1) / sigma_g**2 if prior_a else 0
     )
     if diag:
@@ -224,6 +235,13 @@ _GAIN_SLIPS = (
         "the prior is weighted by the overlap size N_ij, like the data term: e = 1/2 sum N_ij (data + "
         "(1 - g_i)^2 / sigma_g^2), so it adds N_ij / sigma_g^2 to A[i, i] and to b_i for every j != i. You "
         "added 1 / sigma_g^2 per overlap, so the prior is thousands of times too weak.",
+    ),
+    Mistake(
+        "data without N_ij",
+        lambda c: _solve(c.N, c.M, data_n=False),
+        "the data term is weighted by the overlap size N_ij, like the prior: e = 1/2 sum N_ij ((g_i I_ij - "
+        "g_j I_ji)^2 / sigma_N^2 + ...), so each pixel of an overlap counts. You added one data term per overlap, "
+        "so the prior outweighs the data thousands of times and every gain stays near 1.",
     ),
     Mistake(
         "pairs once, prior on the first",
@@ -475,6 +493,7 @@ register_exercise(
             (_variant("data counted twice"), "twice what it should"),
             (_variant("data once, prior twice"), "a quarter"),
             (_variant("prior without N_ij"), "added 1 / sigma_g^2 per overlap"),
+            (_variant("data without N_ij"), "one data term per overlap"),
             (_variant("one prior per image"), "one 1 / sigma_g^2 per image"),
             (_variant("pairs once, prior on the first"), "summed each pair once"),
             (lambda N, M: np.diag(np.asarray(M, float)) / 100.0, "do not minimise"),

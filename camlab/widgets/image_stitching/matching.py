@@ -304,7 +304,9 @@ def _residual_axes(view: FigureView, ax_e) -> tuple:
         )  # they also hold everything beyond the axis
     view.animate(*inl_bars, *out_bars)
     # below the verdict (which sits in the top third, over no bar): the line never crosses its text
-    thr_line = view.animate(ax_e.axvline(3, ymax=0.68, color="black", ls="--", lw=1.5))
+    thr_line = view.animate(
+        ax_e.axvline(3, ymax=0.68, color="black", ls="--", lw=1.5, zorder=0.5)
+    )  # under the bars
     return verdict, (inl_bars, out_bars), thr_line
 
 
@@ -376,7 +378,7 @@ def _registration_controls() -> dict:
     """The controls of :func:`ransac_registration`: the inlier threshold (px, log) and the ratio test r."""
     return {
         "threshold": log_slider(3.0, 0.02, 40.0, 0.01, "threshold (px)"),
-        "ratio": slider(0.75, 0.5, 1.0, 0.01, "ratio test r"),
+        "ratio": slider(0.75, 0.4, 1.0, 0.01, "ratio test r"),  # as in feature_matches
     }
 
 
