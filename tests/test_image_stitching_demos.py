@@ -562,9 +562,11 @@ def test_canvas_projections_frames_the_canvas_in_grey_where_the_box_leaves_room(
     assert (out[y0 : y0 + 100, x0 : x0 + 200] == 255).all()  # the canvas as given, centred
     grey = np.all(out[..., :3] == 153, axis=2)
     rows, cols = slice(y0 - 3, y0 + 103), slice(x0 - 3, x0 + 203)
-    assert grey[y0 - 3, cols].all() and grey[y0 + 102, cols].all()
-    assert grey[rows, x0 - 3].all() and grey[rows, x0 + 202].all()
-    assert grey.sum() == 2 * 206 + 2 * 104  # the frame 3 px outside the canvas, nothing else
+    assert grey[y0 - 3, cols].all() and grey[y0 + 102, cols].all() and grey[y0 - 2, cols].all()
+    assert grey[rows, x0 - 3].all() and grey[rows, x0 + 202].all() and grey[rows, x0 + 201].all()
+    assert (
+        grey.sum() == 206 * 106 - 202 * 102
+    )  # the frame, 2 px wide and 3 px outside the canvas, nothing else
     wide = _place(np.full((100, BOX[1], 4), 255, np.uint8))  # fills the width: no side frame
     grey = np.all(wide[..., :3] == 153, axis=2)
-    assert (wide[y0 : y0 + 100, :, :3] == 255).all() and grey.sum() == 2 * BOX[1]
+    assert (wide[y0 : y0 + 100, :, :3] == 255).all() and grey.sum() == 4 * BOX[1]

@@ -590,11 +590,12 @@ def _gallery() -> dict:
 def _place(rgba: np.ndarray) -> np.ndarray:
     """An RGBA image that fits in :data:`BOX`, placed in the middle of a black BOX (the empty canvas's colour).
 
-    A thin grey frame 3 px outside it marks the canvas's border, as in the other canvas demos; where
+    A grey frame 2 px wide, 3 px outside it, marks the canvas's border, as in the other canvas demos; where
     the canvas fills the box, that side's frame falls outside the box and is not drawn.
     """
     framed = np.full((rgba.shape[0] + 6, rgba.shape[1] + 6, 4), (0, 0, 0, 255), np.uint8)
-    framed[[0, -1], :, :3] = framed[:, [0, -1], :3] = 153
+    # 2 px wide: the demo shows the picture downsampled, which can drop a 1-px row
+    framed[[0, 1, -2, -1], :, :3] = framed[:, [0, 1, -2, -1], :3] = 153
     framed[3:-3, 3:-3] = rgba
     out = np.full((*BOX, 4), (0, 0, 0, 255), np.uint8)
     (y0, x0), (cy, cx) = [
