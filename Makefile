@@ -21,7 +21,7 @@ STAMP  := $(if $(LOCKED),-locked,)
 # installing one flavour (locked or not) invalidates the other's stamps
 OTHER_STAMPS := $(if $(LOCKED),$(VENV)/.installed-lab $(VENV)/.installed-test,$(VENV)/.installed-lab-locked $(VENV)/.installed-test-locked)
 
-.PHONY: lab test test-fast test-wheel test-oldest lint format lock binder-link bench bench-browser strip browser-deps clean
+.PHONY: lab test test-browser test-fast test-wheel test-oldest lint format lock binder-link bench bench-browser strip browser-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -53,9 +53,17 @@ browser-deps:
 	    echo "chromium is missing: install it (apt-get install chromium) or set CAMLAB_SKIP_BROWSER=1"; \
 	  fi; }
 
-# Unit, property, doctest, widget, exercise, lesson (nbval) and browser tests in one run.
-test: $(VENV)/.installed-test$(STAMP) browser-deps hub-deps site-deps
-	$(BIN)/python -m pytest -n 2 --dist loadfile --nbval-lax $(PYTEST_ARGS)
+# Unit, property, doctest, widget, exercise, lesson (nbval), hub and one real-browser test in one
+# run, about 7 minutes on 2 cores. The long Chromium suites (test-browser) and the website's tests
+# (test-site) are their own targets: together they doubled this one. `.ci/run` runs all three.
+QUICK_MARKS := not long_browser and not site
+test: $(VENV)/.installed-test$(STAMP) browser-deps hub-deps
+	$(BIN)/python -m pytest -n 2 --dist loadfile --nbval-lax -m "$(QUICK_MARKS)" $(PYTEST_ARGS)
+
+# Every browser-drawn demo's keydown and picture, the drags, lecture mode, the upload, and every
+# demo's fit at 1400 px: JupyterLab and Voila in headless Chromium.
+test-browser: $(VENV)/.installed-test$(STAMP) browser-deps site-deps
+	$(BIN)/python -m pytest -n 2 --dist loadfile -m long_browser tests $(PYTEST_ARGS)
 
 # Everything but the notebooks and the browser: the quick loop while editing.
 test-fast: $(VENV)/.installed-test$(STAMP)
@@ -198,6 +206,6 @@ site-deps: $(NPM_DIR)/.installed
 site: $(VENV)/.installed-test$(STAMP) site-deps
 	$(BIN)/python tools/site/build.py site
 
-# The site's own tests on the site just built (CI runs this after `make site`).
+# The course website built (every lesson executed, a few minutes), then its own tests.
 test-site: site browser-deps
 	CAMLAB_SITE_DIR=site $(BIN)/python -m pytest -p no:randomly tests/test_site.py $(PYTEST_ARGS)

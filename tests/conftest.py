@@ -47,14 +47,27 @@ def assert_close_to_cv2_warp(ours, ref) -> None:
     )
 
 
+def _long_file(item) -> bool:
+    """A notebook, or a file whose tests start a hub or a browser: tens of seconds each."""
+    return item.path.suffix == ".ipynb" or any(
+        item.get_closest_marker(m) for m in ("hub", "browser", "binder")
+    )
+
+
 def pytest_collection_modifyitems(items):
-    """Deadlines beyond the default 300 s, still finite so nothing can hang CI.
+    """Long files first; deadlines beyond the default 300 s, still finite so nothing can hang CI.
+
+    ``--dist loadfile`` hands whole files to the two workers in collection order: a long file
+    collected last (the hub, the browser test) ran alone at the end, one core idle for a minute
+    and more. The sort is stable, so each file's own tests keep their order.
 
     Tests that install whole environments (marked ``binder``) get 30 minutes. Tests that drive a
     real Chromium (marked ``browser``) get 15 minutes: the site's module fixture opens all 14
     pages with MathJax and axe-core, 190 s on a loaded 2-core machine, more than 300 s beside
     the rest of ``make test -n 2`` (the sixth clean-clone run).
     """
+    long_files = {item.path for item in items if _long_file(item)}
+    items.sort(key=lambda item: item.path not in long_files)
     for item in items:
         if item.get_closest_marker("timeout"):
             continue

@@ -144,6 +144,7 @@ def _scroll_until_drawn(page, demo, tries: int = 3) -> bool:
     return False
 
 
+@pytest.mark.long_browser
 def test_every_demo_fits_at_1400_px_with_the_file_browser_open(lab):
     """Nothing clipped in JupyterLab's output area at a 1400 px window with the file browser open
     (968 px): the controls and the figure sit side by side where both fit, else the figure wraps

@@ -187,6 +187,7 @@ def lecture(tmp_path_factory):
 
 
 @pytest.mark.browser
+@pytest.mark.long_browser
 def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(lecture):
     page = lecture["page"]
     before_png, after_png, before_text, after_text = browser.click_slider(
@@ -207,6 +208,7 @@ def test_camlab_present_serves_demos_without_code_and_a_slider_moves_a_figure(le
 
 
 @pytest.mark.browser
+@pytest.mark.long_browser
 def test_axe_core_finds_no_critical_or_serious_violation_in_the_lecture_view(lecture):
     assert AXE.is_file(), f"axe-core is missing at {AXE}: run `make site-deps`"
     page = lecture["page"]
@@ -241,6 +243,7 @@ FOCUSED = """() => {
 
 
 @pytest.mark.browser
+@pytest.mark.long_browser
 def test_keyboard_alone_reaches_a_corner_slider_and_moves_the_figure(lecture):
     """Tab (only) to drag_homography's "corner u" slider, press arrow keys, and the picture changes."""
     page, shots = lecture["page"], lecture["dir"]

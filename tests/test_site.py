@@ -25,7 +25,7 @@ from camlab.widgets import all_demos
 
 # Without CAMLAB_SITE_DIR the module's first test builds the site (all thirteen lessons executed) inside
 # its deadline: about 2 min on a quiet 2-core machine, past 5 min under load. Still bounded.
-pytestmark = pytest.mark.timeout(900)
+pytestmark = [pytest.mark.site, pytest.mark.timeout(900)]
 
 REPO = Path(__file__).resolve().parent.parent
 LESSONS = sorted((REPO / "lessons").glob("[0-9][0-9]_*.ipynb"))
