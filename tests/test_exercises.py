@@ -139,6 +139,19 @@ def test_forgotten_return_is_named():
         check("lift", lambda p: None)
 
 
+def test_none_where_the_answer_is_nan_is_told_to_return_nan():
+    """A student who returns None for "no focal fits" is told to return NaN, not to add a `return`."""
+    reference = EXERCISES["focal_from_rotation_homography"].reference
+
+    def none_for_undefined(H, shape):
+        f = reference(H, shape)
+        return None if np.isnan(np.asarray(f, float)).any() else f
+
+    with pytest.raises(AssertionError, match=r"answer here is \[nan, nan\].*not None") as info:
+        check("focal_from_rotation_homography", none_for_undefined)
+    assert "forget" not in str(info.value)
+
+
 def test_check_functions_exist_by_name():
     for name in EXERCISES:
         assert callable(getattr(exercises, f"check_{name}"))

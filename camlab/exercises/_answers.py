@@ -152,6 +152,26 @@ def _coarsest_dtype(value: Any) -> np.dtype:
     )
 
 
+def returned_none(name: str, case: int, expected: Any) -> str:
+    """The message for a function that returned None on test input ``case`` (from 1).
+
+    The usual cause is a forgotten ``return``; where the answer is NaN, None was meant as "no
+    answer", and the student is told to return NaN, which keeps the answer's type.
+    """
+    try:
+        numbers = np.asarray(expected, dtype=float)
+    except (TypeError, ValueError):  # text or ragged: no NaN to stand for
+        numbers = np.zeros(0)
+    if np.isnan(numbers).any() and numbers.size <= 4:
+        cause = (
+            f"the answer here is {numbers.tolist()}: NaN marks a value this input does not define. Return "
+            f"NaN in its place (float('nan') or np.nan), not None: NaN is a float, so the answer keeps its type"
+        )
+    else:
+        cause = "did you forget `return`? The last line should be `return <result>`."
+    return f"{name}: your function returned None on test input {case}\n  likely cause: {cause}"
+
+
 def with_article(value: Any) -> str:
     """'a list', 'an ndarray': the value's type with its article."""
     kind = type(value).__name__

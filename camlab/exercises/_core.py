@@ -63,6 +63,7 @@ from ._answers import (
     as_array,
     precision_problem,
     rescaled_to,
+    returned_none,
     same_up_to_scale,
     type_problem,
     with_article,
@@ -325,7 +326,7 @@ def _copy_one(a: Any) -> Any:
 
 
 def _copy(args: tuple) -> tuple:
-    # Students must not be able to corrupt the reference's inputs by editing in place.
+    """A copy of every argument: students must not corrupt the reference's inputs by editing in place."""
     return tuple(_copy_one(a) for a in args)
 
 
@@ -588,10 +589,7 @@ def check(
             )
             return CheckResult(name, False)
         if got is None:
-            raise CheckFailed(
-                f"{name}: your function returned None on test input {i + 1}\n"
-                f"  likely cause: did you forget `return`? The last line should be `return <result>`."
-            )
+            raise CheckFailed(returned_none(name, i + 1, expected))
         wrong_type = type_problem(got, expected, exercise.ndarray_only)
         if wrong_type:
             raise CheckFailed(
