@@ -479,18 +479,23 @@ def _refit_on_inliers(
         row[sub] = True
     # Every subset refitted together: one batched solve per threshold instead of one per subset.
     models, alive = model.fit_many(masks)
+    errors = model.residuals(models)
     # thresholds shrinking geometrically from _LO_FACTOR * t to t (np.geomspace, without its overhead)
     for thr in threshold * _LO_FACTOR ** np.linspace(1.0, 0.0, steps):
         with np.errstate(invalid="ignore"):
-            sel = model.residuals(models) < thr
-        moving = np.flatnonzero(alive & (sel.sum(axis=1) > s))  # the others keep their fit
+            sel = errors < thr
+        # A model whose selection is the set it was fitted on would refit to itself: it keeps its
+        # fit and its errors (most do once the outliers are out: a third of the work saved).
+        changed = (sel != masks).any(axis=1)
+        moving = np.flatnonzero(alive & changed & (sel.sum(axis=1) > s))
         if len(moving) == 0:
-            break
+            continue  # a smaller threshold may still drop pairs
         refit, ok = model.fit_many(sel[moving])
-        models[moving[ok]] = refit[ok]
+        models[moving[ok]], masks[moving[ok]] = refit[ok], sel[moving[ok]]
+        errors[moving[ok]] = model.residuals(refit[ok])
         alive[moving[~ok]] = False  # a refit that fails drops its subset
     if alive.any():
-        errors = model.residuals(models[alive])
+        errors = errors[alive]
         costs = cost_of(errors, threshold)
         k = int(np.argmin(costs))
         if costs[k] < best_cost:
