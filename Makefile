@@ -54,7 +54,7 @@ browser-deps:
 	  fi; }
 
 # Unit, property, doctest, widget, exercise, lesson (nbval), hub and one real-browser test in one
-# run, about 7 minutes on 2 cores. The long Chromium suites (test-browser) and the website's tests
+# run, about 11 minutes on 2 cores. The long Chromium suites (test-browser) and the website's tests
 # (test-site) are their own targets: together they doubled this one. `.ci/run` runs all three.
 QUICK_MARKS := not long_browser and not site
 test: $(VENV)/.installed-test$(STAMP) browser-deps hub-deps
