@@ -162,6 +162,8 @@ def returned_none(name: str, case: int, expected: Any) -> str:
         numbers = np.asarray(expected, dtype=float)
     except (TypeError, ValueError):  # text or ragged: no NaN to stand for
         numbers = np.zeros(0)
+    # a number or a pair (a focal, a focal per image) meant as "none": an array holding a NaN
+    # and returned as None is far likelier a forgotten return, and its list would flood the message
     if np.isnan(numbers).any() and numbers.size <= 4:
         cause = (
             f"the answer here is {numbers.tolist()}: NaN marks a value this input does not define. Return "
