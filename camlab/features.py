@@ -37,6 +37,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from ._recent import RecentAnswers
 from ._validate import CamlabInputError, check_image, check_integer, check_positive
 
 __all__ = [
@@ -199,9 +200,13 @@ def detect_features(
     Features
         ``points`` (N, 2) in pixels (u, v), ``descriptors``, ``sizes``, ``angles``, ``responses``.
         N may be 0 (a flat image has no features); matching then finds nothing.
-    """
-    import cv2
 
+    Notes
+    -----
+    The same image asked again (the same grey pixels, mask and settings) gets its earlier
+    answer as a fresh copy, not a second detection: the last 32 are kept, by a hash of the
+    pixels (:mod:`camlab._recent`). Lesson 09 stitches the same photos at several settings.
+    """
     if method not in _METHODS:
         raise CamlabInputError(f"method: expected one of {_METHODS}, got {method!r}")
     max_features = check_integer(max_features, "max_features")
@@ -214,13 +219,34 @@ def detect_features(
                 f"mask: expected shape {gray.shape} like the image, got {mk.shape}"
             )
         m = mk.astype(np.uint8) * 255
+    threshold = float(contrast_threshold) if method == "sift" else None  # ORB ignores it
+    found = _SEEN.get(
+        [gray, m],
+        (method, max_features, threshold),
+        lambda: _detect(gray, m, method, max_features, threshold),
+    )
+    return Features(*(a.copy() if isinstance(a, np.ndarray) else a for a in found))
+
+
+_SEEN: RecentAnswers[Features] = RecentAnswers(keep=32)
+"""detect_features' recent answers, by the grey pixels, the mask and the settings."""
+
+
+def _detect(
+    gray: np.ndarray,
+    mask: np.ndarray | None,
+    method: str,
+    max_features: int,
+    threshold: float | None,
+) -> Features:
+    """detect_features on a checked grey image and mask (255 where to look, or None)."""
+    import cv2
+
     if method == "sift":
-        det = cv2.SIFT_create(
-            nfeatures=int(max_features), contrastThreshold=float(contrast_threshold)
-        )
+        det = cv2.SIFT_create(nfeatures=int(max_features), contrastThreshold=threshold)
     else:
         det = cv2.ORB_create(nfeatures=int(max_features), fastThreshold=10)
-    kps, desc = det.detectAndCompute(gray, m)
+    kps, desc = det.detectAndCompute(gray, mask)
     n = len(kps)
     dim, dtype = (128, np.float32) if method == "sift" else (32, np.uint8)
     if n == 0 or desc is None:

@@ -113,7 +113,7 @@ def test_find_chessboard_answers_a_photo_seen_again_from_memory(bundled, monkeyp
     answer is the first one's, as a fresh copy; other pixels, patterns or max_side detect anew."""
     from camlab.calibration import detection
 
-    monkeypatch.setattr(detection, "_SEEN", type(detection._SEEN)())
+    monkeypatch.setattr(detection, "_SEEN", type(detection._SEEN)(keep=64))
     img = bundled.images[3]
     calls = []
     find = detection._find
@@ -131,7 +131,7 @@ def test_find_chessboard_answers_a_photo_seen_again_from_memory(bundled, monkeyp
     other[0, 0] ^= 1  # one grey level of one pixel
     C.find_chessboard(other, (9, 6))
     assert len(calls) == 4
-    monkeypatch.setattr(detection, "_SEEN_KEEP", 2)
+    monkeypatch.setattr(detection._SEEN, "keep", 2)
     C.find_chessboard(bundled.images[4], (9, 6))
     assert len(detection._SEEN) == 2
 

@@ -69,6 +69,36 @@ def test_detect_bad_options_and_mask(pair):
     assert len(f.points) > 50 and f.points[:, 0].max() < 160
 
 
+def test_an_image_seen_again_is_answered_from_memory_as_a_fresh_copy(pair, monkeypatch):
+    """The same grey pixels, mask and settings are not detected again (lesson 09 stitches the
+    same photos at several settings); the answer is a copy; anything else detects anew."""
+    s, _ = pair
+    monkeypatch.setattr(ft, "_SEEN", type(ft._SEEN)(keep=32))
+    calls = []
+    detect = ft._detect
+    monkeypatch.setattr(ft, "_detect", lambda *a: calls.append(a[2:]) or detect(*a))
+    img = s.images[3]
+    first = ft.detect_features(img, max_features=800)
+    first.points[:] = -1.0  # the caller's copy: changing it leaves the remembered answer alone
+    again = ft.detect_features(img.copy(), max_features=800)
+    fresh = detect(ft.to_gray_uint8(img), None, "sift", 800, 0.02)
+    assert calls == [("sift", 800, 0.02)]
+    for got, want in zip(again, fresh, strict=True):
+        assert np.array_equal(got, want) if isinstance(want, np.ndarray) else got == want
+    ft.detect_features(img, max_features=700)
+    ft.detect_features(img, max_features=800, contrast_threshold=0.04)
+    ft.detect_features(img, "orb", 800)
+    ft.detect_features(img, "orb", 800, contrast_threshold=0.04)  # ORB ignores it: remembered
+    ft.detect_features(img, max_features=800, mask=np.ones((240, 320), bool))
+    other = ft.to_gray_uint8(img)
+    other[0, 0] ^= 1  # one grey level of one pixel
+    ft.detect_features(other, max_features=800)
+    assert len(calls) == 6
+    monkeypatch.setattr(ft._SEEN, "keep", 2)
+    ft.detect_features(s.images[0], max_features=800)
+    assert len(ft._SEEN) == 2
+
+
 def test_flat_image_has_no_features_and_matches_nothing(pair):
     _, (f1, _) = pair
     flat = ft.detect_features(np.zeros((100, 100), np.uint8))

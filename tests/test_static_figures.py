@@ -205,3 +205,79 @@ def test_image_panels_tick_the_centre_where_the_course_puts_it():
     assert list(ax.get_xticks()) == [0, 319.5, 639] and list(ax.get_yticks()) == [0, 239.5, 479]
     assert [t.get_text() for t in ax.get_xticklabels()] == ["0", "319.5", "639"]
     assert ax.get_xlim() == (-0.5, 639.5) and ax.get_ylim() == (479.5, -0.5)
+
+
+def _laid_out_figure(canvas_class=None) -> Figure:
+    """A constrained-layout figure with what lesson figures hold: panels, image, colour bar, legend,
+    suptitle, and an animated line (a demo's moving part), built the same way on every call."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = Figure(figsize=(6, 3.5), dpi=90, layout="constrained")
+    (canvas_class or FigureCanvasAgg)(fig)
+    ax1, ax2 = fig.subplots(1, 2)
+    ax1.plot([0, 1, 3], [2, 0, 1], label="measured")
+    ax1.plot([0, 3], [1, 1], animated=True, lw=3, color="tab:red")
+    ax1.set(title="a plot", xlabel="x (px)", ylabel="y (px)")
+    ax1.legend()
+    fig.colorbar(ax2.imshow(np.arange(48.0).reshape(6, 8)), ax=ax2, label="grey level")
+    ax2.set_title("an image")
+    fig.suptitle("two panels, laid out")
+    return fig
+
+
+def _draws(monkeypatch) -> list:
+    calls: list = []
+    draw = Figure.draw
+    monkeypatch.setattr(
+        Figure, "draw", lambda self, renderer: calls.append(1) or draw(self, renderer)
+    )
+    return calls
+
+
+def test_figure_png_draws_a_laid_out_figure_once_into_the_pixels_savefig_gives(monkeypatch):
+    """savefig draws a figure with a layout engine twice; figure_png once, with the same pixels,
+    the animated line included (a demo's static picture shows its moving parts)."""
+    saved = io.BytesIO()
+    _laid_out_figure().savefig(saved, format="png", dpi="figure")
+    calls = _draws(monkeypatch)
+    png = static.figure_png(_laid_out_figure())
+    assert len(calls) == 1
+    want, got = (_png_pixels(base64.b64encode(b).decode()) for b in (saved.getvalue(), png))
+    assert got.shape == want.shape == (315, 540, 4) and np.array_equal(got, want)
+    red = (got[..., 0] > 200) & (got[..., 1] < 60) & (got[..., 2] < 60)
+    assert red.sum() > 300  # the animated line is in the picture
+
+
+def test_figure_png_at_another_dpi_or_on_a_hidpi_screen_goes_through_savefig(monkeypatch):
+    fig = _laid_out_figure()
+    assert _png_pixels(base64.b64encode(static.figure_png(fig, dpi=45)).decode()).shape[:2] == (
+        157,
+        270,
+    )
+    fig._original_dpi, fig.dpi = 90, 180  # what a HiDPI browser does to an ipympl figure
+    calls = _draws(monkeypatch)
+    assert _png_pixels(base64.b64encode(static.figure_png(fig)).decode()).shape[:2] == (630, 1080)
+    assert len(calls) == 2  # savefig's dry run and its draw
+
+
+def test_an_ipympl_canvas_is_drawn_once_per_display_into_savefigs_pixels(monkeypatch):
+    """ipympl's own bundle saves the figure (two draws); the formatter hands it the one picture it drew."""
+    from ipympl.backend_nbagg import Canvas
+    from IPython.core.interactiveshell import InteractiveShell
+
+    saved = io.BytesIO()
+    _laid_out_figure(Canvas).savefig(saved, format="png", dpi="figure")
+    fig = _laid_out_figure(Canvas)
+    shell = InteractiveShell.instance()
+    try:
+        assert static.install_canvas_formatter()
+        calls = _draws(monkeypatch)
+        data, _ = shell.display_formatter.format(fig.canvas)
+    finally:
+        InteractiveShell.clear_instance()
+    assert len(calls) == 1
+    assert np.array_equal(
+        _png_pixels(data["image/png"]), _png_pixels(base64.b64encode(saved.getvalue()).decode())
+    )
+    assert fig.canvas._data_url.endswith(data["image/png"])  # ipympl's copy, for its own HTML embed
+    assert "savefig" not in vars(fig)  # Figure.savefig is the figure's again

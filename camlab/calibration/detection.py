@@ -9,14 +9,13 @@ Pixels (u, v) = (column, row), origin at the centre of the top-left pixel.
 
 from __future__ import annotations
 
-import hashlib
-from collections import OrderedDict
 from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .._recent import RecentAnswers
 from .._validate import CamlabInputError, check_image, check_positive
 
 
@@ -294,25 +293,12 @@ def find_chessboard(
     img = grey_uint8(image)
     if max_side is not None:
         max_side = int(check_positive(max_side, "max_side", "pixels"))
-    key = (
-        hashlib.blake2b(np.ascontiguousarray(img), digest_size=16).digest(),
-        img.shape,
-        pattern,
-        max_side,
-    )
-    found = _SEEN.get(key)
-    if found is None:
-        found = _SEEN[key] = _find(img, pattern, max_side)
-        while len(_SEEN) > _SEEN_KEEP:
-            _SEEN.popitem(last=False)  # the least recently asked
-    else:
-        _SEEN.move_to_end(key)
+    found = _SEEN.get([img], (pattern, max_side), lambda: _find(img, pattern, max_side))
     return found._replace(corners=None if found.corners is None else found.corners.copy())
 
 
-_SEEN: OrderedDict[tuple, ChessboardDetection] = OrderedDict()
-"""find_chessboard's recent answers, by the grey image's pixels (a hash), pattern and max_side."""
-_SEEN_KEEP = 64
+_SEEN: RecentAnswers[ChessboardDetection] = RecentAnswers(keep=64)
+"""find_chessboard's recent answers, by the grey image's pixels, pattern and max_side."""
 
 
 def _find(img: np.ndarray, pattern: PatternSize, max_side: int | None) -> ChessboardDetection:

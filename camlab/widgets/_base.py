@@ -18,7 +18,6 @@ The figure is shown according to the matplotlib backend:
 from __future__ import annotations
 
 import html
-import io
 import os
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -31,7 +30,13 @@ from matplotlib.figure import Figure
 from matplotlib.image import AxesImage
 from matplotlib.spines import Spine
 
-from ..plotting.static import CANVAS_FRAME_PX, OUTPUT_WIDTH_PX, demo_alt_text, static_bundle
+from ..plotting.static import (
+    CANVAS_FRAME_PX,
+    OUTPUT_WIDTH_PX,
+    demo_alt_text,
+    figure_png,
+    static_bundle,
+)
 from ._transport import halo_in_two_passes, show_at_display_resolution, use_fast_png
 from .controls import slider as slider  # re-exported: every demo module imports it from here
 from .controls import whole_label
@@ -189,9 +194,7 @@ class FigureView:
     def refresh(self) -> None:
         """Show the figure's current artists."""
         if self.mode == "png":
-            buf = io.BytesIO()
-            self.fig.savefig(buf, format="png", dpi=self.fig.dpi)
-            self.widget.value = buf.getvalue()
+            self.widget.value = figure_png(self.fig)
             return
         canvas = self.fig.canvas
         if self._background is None:

@@ -33,7 +33,6 @@ lecture mode (``camlab present``) shows that sentence as text.
 from __future__ import annotations
 
 import html
-import io
 import math
 import os
 from collections.abc import Callable, Sequence
@@ -46,7 +45,7 @@ import numpy as np
 from .._files import atomic_output, damaged_image_file, keep_a_copy, output_folder
 from .._notebook import UPLOAD_NEEDS_KERNEL
 from .._validate import CamlabInputError
-from ..plotting.static import static_bundle
+from ..plotting.static import figure_png, static_bundle
 
 __all__ = ["DecodedPhoto", "PhotoUpload", "decode_photo"]
 
@@ -153,9 +152,7 @@ def _static_png() -> bytes:
     fig = Figure(figsize=(6.4, 0.5), dpi=100)
     FigureCanvasAgg(fig)
     fig.text(0.01, 0.5, UPLOAD_NEEDS_KERNEL, va="center", ha="left", fontsize=11)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=fig.dpi)
-    return buf.getvalue()
+    return figure_png(fig)
 
 
 class PhotoUpload:
