@@ -57,7 +57,7 @@ def test_an_unknown_name_is_an_attribute_error_that_names_it():
 # docs/architecture.md's table: a module imports only from floors below its own.
 FLOORS = {
     0: ["_validate", "_access", "_notebook"],
-    1: ["_files", "optimise", "robust"],
+    1: ["_files", "_recent", "optimise", "robust"],
     2: ["pinhole", "lens", "distortion", "sensor", "features", "disparity", "factorization"],
     3: ["projective"],
     4: ["camera", "homography"],
