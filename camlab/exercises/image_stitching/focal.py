@@ -683,7 +683,13 @@ def _focal_diagnosis(args, got, expected) -> str:
             return hint
     cause = first_mistake(_FOCAL_SLIPS, context, g, _shows_slip)
     if cause:
-        return f"{which}: {cause}"
+        # a slip in the centring spoils both focals alike: name both, not the first one alone
+        other = SimpleNamespace(**{**vars(context), "expected": float(expected[1 - j])})
+        other.keys = _COLUMNS if j == 0 else _ROWS
+        both = not _same_one(pair[1 - j], float(expected[1 - j])) and cause == first_mistake(
+            _FOCAL_SLIPS, other, pair[1 - j], _shows_slip
+        )
+        return f"{'both focals, f_from and f_to' if both else which}: {cause}"
     if not np.isfinite(g):
         return (
             f"you returned NaN or inf for {which} on a turn where its formula is defined, so f^2 came out negative "
@@ -762,7 +768,7 @@ register_exercise(
                 lambda H, shape: tuple(v**2 for v in focal_from_rotation_homography(H, shape)),
                 "square root",
             ),
-            (_focal_uncentred, "principal point"),
+            (_focal_uncentred, "both focals, f_from and f_to: move the principal point"),
             (
                 lambda H, shape: focal_from_rotation_homography(np.asarray(H, float).T, shape),
                 "H transposed",
