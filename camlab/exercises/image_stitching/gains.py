@@ -110,14 +110,14 @@ def _solve(
     sign=-1.0,
     diag=False,
     diag_in_b=False,
-    coupling_sq=False,
+    coupling="ij ji",
     prior="N",
     data_n=True,
 ):
     """Section 5's normal equations with one slip switched on (the keywords' defaults are right).
 
-    ``diag_in_b`` zeroes N_ii in A but leaves it in b; ``coupling_sq`` writes the coupling with I * I
-    (I_ij^2) where I * I.T (I_ij I_ji) belongs. ``prior`` weighs the prior (1 - g_i)^2 / sigma_g^2 by
+    ``diag_in_b`` zeroes N_ii in A but leaves it in b; ``coupling`` says which means the coupling
+    multiplies: "ij ji" (I * I.T, right), "ij ij" (I * I, I_ij^2) or "ji ji" (I.T * I.T, I_ji^2). ``prior`` weighs the prior (1 - g_i)^2 / sigma_g^2 by
     N_ij ("N", right), by 1 per overlapping image ("count"), by 1 per image ("one") or by N_ij for
     j > i only ("upper": each pair summed once, its prior on the first image only).
     """
@@ -129,7 +129,8 @@ def _solve(
     D = (
         N if data_n else (N > 0).astype(float)
     )  # the slip "data without N_ij": one data term per overlap
-    A = sign * D * factor * M * (M if coupling_sq else M.T) / s2
+    first, second = {"ij ji": (M, M.T), "ij ij": (M, M), "ji ji": (M.T, M.T)}[coupling]
+    A = sign * D * factor * first * second / s2
     weight = {
         "N": N,
         "count": (N > 0).astype(float),
@@ -194,9 +195,15 @@ _GAIN_SLIPS = (
     ),
     Mistake(
         "I * I coupling",
-        lambda c: _solve(c.N, c.M, coupling_sq=True),
+        lambda c: _solve(c.N, c.M, coupling="ij ij"),
         "the coupling term A[i, j] = -2 N_ij I_ij I_ji / sigma_N^2 multiplies image i's mean by image j's on the "
         "same overlap: with arrays that is I_mean * I_mean.T. You wrote I_mean * I_mean (I_ij^2).",
+    ),
+    Mistake(
+        "I.T * I.T coupling",
+        lambda c: _solve(c.N, c.M, coupling="ji ji"),
+        "the coupling term A[i, j] = -2 N_ij I_ij I_ji / sigma_N^2 multiplies image i's mean by image j's on the "
+        "same overlap: with arrays that is I_mean * I_mean.T. You wrote I_mean.T * I_mean.T (I_ji^2).",
     ),
     Mistake(
         "sign",
@@ -486,7 +493,8 @@ register_exercise(
             (lambda N, M: np.zeros(len(N)), "without the prior"),
             (_variant("prior only on the right"), "first only"),
             (_variant("I transposed"), "I_mean transposed"),
-            (_variant("I * I coupling"), "I_mean * I_mean.T"),
+            (_variant("I * I coupling"), "You wrote I_mean * I_mean (I_ij^2)"),
+            (_variant("I.T * I.T coupling"), "You wrote I_mean.T * I_mean.T (I_ji^2)"),
             (_variant("sign"), "sign flip"),
             (_variant("no factor 2"), "factor 2"),
             (_variant("no factor 2"), "or the prior gained one"),
