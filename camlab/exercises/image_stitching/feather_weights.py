@@ -126,6 +126,12 @@ def _feather_values_hint(g: np.ndarray, expected: np.ndarray) -> str:
             "you counted pixels from 1: the first column is u = 0 (pixel centres at 0, 1, ..., W - 1), "
             "so use np.arange(W), not np.arange(1, W + 1)."
         )
+    if np.allclose(g, _feather_offsets(expected.shape, 1.0, 1.0)):
+        return (
+            "you counted pixels from 1 (u = 1 ... W, as np.arange(1, W + 1) gives) and took min(u, W - u), so the "
+            "first column weighs 1 and the last 0. Pixel centres are u = 0 ... W - 1 (np.arange(W)) and the "
+            "borders half a pixel outside them: min(u + 1/2, W - 1/2 - u), and the same for v."
+        )
     offsets = _offset_hint(g, expected.shape)
     if offsets:
         return offsets
@@ -287,6 +293,10 @@ register_exercise(
                 "half a pixel at the near border",
             ),
             (lambda shape: _feather_offsets(tuple(shape[:2]), 1.5, 1.5), "counted pixels from 1"),
+            (
+                lambda shape: _feather_offsets(tuple(shape[:2]), 1.0, 1.0),
+                "counted pixels from 1 (u = 1 ... W",
+            ),
             (
                 lambda shape: _feather_offsets(tuple(shape[:2]), -0.5, 0.5),
                 "near border (you used u - 1/2",
