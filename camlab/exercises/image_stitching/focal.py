@@ -434,7 +434,8 @@ def _cut_off_hint(H, shape, g: float, e: float, keys, which: str) -> str | None:
     )
     if any(decides(Hk, sk, keys) == k for Hk, sk, _ in earlier):
         return f"you returned NaN for {which}, but {cut_off}"
-    return f"you returned NaN for {which}: either {_SIGN_HINT} Or: {cut_off}"
+    # a denominator this small makes the cut-off the likelier slip: it leads
+    return f"you returned NaN for {which}, but {cut_off} If you use no cut-off: {_SIGN_HINT}"
 
 
 def _earlier_inputs(H):
@@ -727,6 +728,19 @@ def _abs_student(slip: str = ""):
     return student
 
 
+def _cut_off_student(cut: float = 1e-9):
+    """The prompt's rule with the division guarded by a fixed cut-off, abs(d) > ``cut`` (P14's student)."""
+
+    def student(H, shape):
+        f2 = _focal_formulas(H, shape, squared=True)
+        d = denominators(H, shape)
+        return _focals_from_squares(
+            {k: v if abs(d[k]) > cut else float("nan") for k, v in f2.items()}, H, shape
+        )
+
+    return student
+
+
 def _flipped(formula: str):
     """The prompt's rule with the sign of one ``formula`` flipped (I9's student)."""
 
@@ -806,6 +820,10 @@ register_exercise(
             (_larger_denominator_student("", equal_length_only=True), "0/0"),
             (_slipped_student(""), "f^2 > 0"),  # median of both formulas of each pair
             (_abs_student(), "abs() silences the NaN"),
+            (
+                _cut_off_student(),
+                "but the formula with the larger denominator",
+            ),  # the cut-off leads
             *((_sentinel_student(v), "not a rotation") for v in (0.0, np.inf, -1.0, None)),
             (_sentinel_student("complex"), "sqrt(f^2 + 0j).real"),
             (
