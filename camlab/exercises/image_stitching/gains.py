@@ -251,6 +251,13 @@ _GAIN_SLIPS = (
         "so the prior outweighs the data thousands of times and every gain stays near 1.",
     ),
     Mistake(
+        "no N_ij anywhere",
+        lambda c: _solve(c.N, c.M, data_n=False, prior="count"),
+        "neither term carries N_ij: you weighted every overlap equally (N as 0 / 1). e = 1/2 sum N_ij (data + "
+        "prior): each overlap counts by its number of pixels N_ij, in the data term and the prior alike, so a "
+        "sliver of an overlap pulls on the gains as little as it tells about them.",
+    ),
+    Mistake(
         "pairs once, prior on the first",
         lambda c: _solve(c.N, c.M, prior="upper"),
         "you summed each pair once (j > i) and gave its prior to the first image only, so image i's prior "
@@ -342,9 +349,13 @@ _GAIN_SLIPS = (
     ),
     Mistake(
         "normalised",
-        lambda c: [c.expected / c.expected[k] for k in range(len(c.expected))],
-        "you divided the gains by one image's gain; the prompt asks for the solution g itself (stitch divides "
-        "by the reference's gain afterwards, outside this function).",
+        lambda c: (
+            [c.expected / c.expected[k] for k in range(len(c.expected))]
+            + [c.expected / c.expected.mean()]
+        ),
+        "you rescaled the gains (divided them by one image's gain, or by their mean); the prompt asks for the "
+        "solution g itself, whose prior already fixes the scale near 1 (stitch divides by the reference's gain "
+        "afterwards, outside this function).",
     ),
 )
 """gains_from_overlaps' slips, as the gains they give on the test input (checked in this order)."""
@@ -495,6 +506,8 @@ register_exercise(
             (_variant("I transposed"), "I_mean transposed"),
             (_variant("I * I coupling"), "You wrote I_mean * I_mean (I_ij^2)"),
             (_variant("I.T * I.T coupling"), "You wrote I_mean.T * I_mean.T (I_ji^2)"),
+            (_variant("no N_ij anywhere"), "you weighted every overlap equally"),
+            (lambda N, M: _reference(N, M) / _reference(N, M).mean(), "or by their mean"),
             (_variant("sign"), "sign flip"),
             (_variant("no factor 2"), "factor 2"),
             (_variant("no factor 2"), "or the prior gained one"),
@@ -525,7 +538,7 @@ register_exercise(
             (_variant("N_ii in b"), "kept it in b_i"),
             (_pairs_once, "j < i included"),
             (lambda N, M: 1 / _reference(N, M), "you returned 1/g"),
-            (lambda N, M: _reference(N, M) / _reference(N, M)[0], "divided the gains"),
+            (lambda N, M: _reference(N, M) / _reference(N, M)[0], "divided them by one image's gain"),
         ),
     )
 )
