@@ -538,7 +538,10 @@ register_exercise(
             (_variant("N_ii in b"), "kept it in b_i"),
             (_pairs_once, "j < i included"),
             (lambda N, M: 1 / _reference(N, M), "you returned 1/g"),
-            (lambda N, M: _reference(N, M) / _reference(N, M)[0], "divided them by one image's gain"),
+            (
+                lambda N, M: _reference(N, M) / _reference(N, M)[0],
+                "divided them by one image's gain",
+            ),
         ),
     )
 )
