@@ -457,14 +457,13 @@ def _larger_denominator_student(slip: str, orthogonality_only=False, equal_lengt
 
     def student(H, shape):
         f2 = _focal_formulas(H, shape, slip, squared=True)
-        out = []
-        for keys in (_ROWS, _COLUMNS):
-            k = decides(H, shape, keys)
-            if orthogonality_only or equal_length_only:
-                k = keys[0] if orthogonality_only else keys[1]
-            v = f2[k]
-            out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
-        return tuple(out)
+        if orthogonality_only or equal_length_only:  # one kind of formula, whichever decides
+            f2 = {
+                k: f2[keys[0] if orthogonality_only else keys[1]]
+                for keys in (_ROWS, _COLUMNS)
+                for k in keys
+            }
+        return _focals_from_squares(f2, H, shape)
 
     return student
 
@@ -685,11 +684,10 @@ def _focal_diagnosis(args, got, expected) -> str:
     cause = first_mistake(_FOCAL_SLIPS, context, g, _shows_slip)
     if cause:
         # a slip in the centring spoils both focals alike: name both, not the first one alone
-        other = SimpleNamespace(**{**vars(context), "expected": float(expected[1 - j])})
-        other.keys = _COLUMNS if j == 0 else _ROWS
-        both = not _same_one(pair[1 - j], float(expected[1 - j])) and cause == first_mistake(
-            _FOCAL_SLIPS, other, pair[1 - j], _shows_slip
-        )
+        other = SimpleNamespace(**vars(context))
+        other.expected, other.keys = float(expected[1 - j]), (_COLUMNS, _ROWS)[j]
+        again = first_mistake(_FOCAL_SLIPS, other, pair[1 - j], _shows_slip)
+        both = again == cause and not _same_one(pair[1 - j], other.expected)
         return f"{'both focals, f_from and f_to' if both else which}: {cause}"
     if not np.isfinite(g):
         return (
@@ -710,11 +708,8 @@ def _one_focal(H, shape):
 
 def _focals_from_squares(f2: dict, H, shape) -> tuple:
     """(f_from, f_to) from the squared formulas ``f2``: each group's deciding formula, NaN if <= 0."""
-    out = []
-    for keys in (_ROWS, _COLUMNS):
-        v = f2[decides(H, shape, keys)]
-        out.append(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan"))
-    return tuple(out)
+    deciding = (f2[decides(H, shape, keys)] for keys in (_ROWS, _COLUMNS))
+    return tuple(float(np.sqrt(v)) if np.isfinite(v) and v > 0 else float("nan") for v in deciding)
 
 
 def _abs_student(slip: str = ""):
@@ -728,28 +723,29 @@ def _abs_student(slip: str = ""):
     return student
 
 
-def _cut_off_student(cut: float = 1e-9):
-    """The prompt's rule with the division guarded by a fixed cut-off, abs(d) > ``cut`` (P14's student)."""
+def _edited_student(edit):
+    """The prompt's rule with its squared formulas changed by ``edit(f2, H, shape)`` (a slip)."""
 
     def student(H, shape):
-        f2 = _focal_formulas(H, shape, squared=True)
-        d = denominators(H, shape)
         return _focals_from_squares(
-            {k: v if abs(d[k]) > cut else float("nan") for k, v in f2.items()}, H, shape
+            edit(_focal_formulas(H, shape, squared=True), H, shape), H, shape
         )
 
     return student
 
 
+def _cut_off_student(cut: float = 1e-9):
+    """The prompt's rule with the division guarded by a fixed cut-off, abs(d) > ``cut`` (P14's student)."""
+    return _edited_student(
+        lambda f2, H, shape: {
+            k: v if abs(denominators(H, shape)[k]) > cut else np.nan for k, v in f2.items()
+        }
+    )
+
+
 def _flipped(formula: str):
     """The prompt's rule with the sign of one ``formula`` flipped (I9's student)."""
-
-    def student(H, shape):
-        f2 = _focal_formulas(H, shape, squared=True)
-        f2[formula] = -f2[formula]
-        return _focals_from_squares(f2, H, shape)
-
-    return student
+    return _edited_student(lambda f2, H, shape: {**f2, formula: -f2[formula]})
 
 
 def _sentinel_student(value):
