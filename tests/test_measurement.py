@@ -307,3 +307,30 @@ def test_the_picking_sigma_is_the_central_difference_of_pixels_to_plane():
     np.testing.assert_allclose(
         m.value[0], np.linalg.norm(np.subtract(*pixels_to_plane(pose, K, ends))), rtol=1e-14
     )
+
+
+def test_pixel_distortion_jacobian_equals_differences_and_inverts_to_the_undistortion():
+    """The analytic pixel Jacobian (K2 J(x) K2^-1) against central differences of distort_pixels,
+    and its inverse against central differences of undistort_pixels at the measured pixels."""
+    from camlab.distortion import as_dist, distort_pixels, undistort_pixels
+    from camlab.measurement.pnp import pixel_distortion_jacobian
+
+    K = np.array([[530.0, 1.5, 341], [0, 528, 236], [0, 0, 1]])  # a skew, so K2 is not diagonal
+    d = as_dist([-0.28, 0.08, 0.0012, -0.0008, -0.02])
+    ideal = np.array([[20.0, 30], [341, 236], [600, 400], [100, 450]])
+    D = pixel_distortion_jacobian(ideal, K, d)
+    h = 1e-4
+    for j in range(2):
+        e = np.zeros(2)
+        e[j] = h
+        numeric = (distort_pixels(ideal + e, K, d) - distort_pixels(ideal - e, K, d)) / (2 * h)
+        np.testing.assert_allclose(D[:, :, j], numeric, atol=1e-7)
+    measured = distort_pixels(ideal, K, d)
+    D_inv = np.linalg.inv(D)
+    for j in range(2):
+        e = np.zeros(2)
+        e[j] = h
+        numeric = (undistort_pixels(measured + e, K, d) - undistort_pixels(measured - e, K, d)) / (
+            2 * h
+        )
+        np.testing.assert_allclose(D_inv[:, :, j], numeric, atol=1e-7)

@@ -15,7 +15,8 @@ covariance :math:`\Sigma_p` from :func:`solve_pnp`) and on the pixels picked on 
 
 with the gradients :math:`g_p = \partial m / \partial p` and :math:`g_u = \partial m / \partial u`
 taken by central differences, :math:`g_u` in the measured (distorted) pixels where the picking
-noise lives (chained through the undistortion's local Jacobian). Why first order and not Monte Carlo: the corner noise (0.1-0.5 px)
+noise lives (chained through the undistortion's local Jacobian, the inverse of the distortion's
+analytic one at the ideal pixel). Why first order and not Monte Carlo: the corner noise (0.1-0.5 px)
 is tiny against the pixels over which :math:`H^{-1}` bends (hundreds), so the map is linear
 at the scale of the noise and the formula is exact to a few per cent; it is deterministic
 (no random draws in a lesson) and a thousand times cheaper. ``tests/test_measurement.py``
@@ -42,7 +43,7 @@ from numpy.typing import ArrayLike
 from .._validate import CamlabInputError, DegenerateError, as_points, check_intrinsics
 from ..camera import rotation_from_axis_angle_unchecked
 from ..distortion import as_dist, undistort_pixels
-from .pnp import distortion_jacobian
+from .pnp import pixel_distortion_jacobian
 
 __all__ = ["PlaneMeasurement", "area_on_plane", "measure_on_plane", "pixels_to_plane"]
 
@@ -161,7 +162,9 @@ def _propagate(
     """A value of the plane points and its first-order sigma (central differences, see the module).
 
     The picking noise is in the measured pixels: the gradient in the ideal pixels is chained
-    through the undistortion's local 2 x 2 Jacobian at each picked pixel.
+    through the undistortion's local 2 x 2 Jacobian at each picked pixel: the inverse of the
+    distortion's at the ideal pixel (:func:`pixel_distortion_jacobian`), four undistortions fewer
+    than central differences of the undistortion.
     """
     R, t, cov = _pose_parts(pose)
     uv = _ideal(measured, K, dist)
@@ -188,8 +191,10 @@ def _propagate(
         d[k] = _STEP_PIXEL
         step = d.reshape(uv.shape)
         g_pix[:, k] = (value_at(uv + step) - value_at(uv - step)) / (2 * _STEP_PIXEL)
-    if np.any(as_dist(dist)):  # d ideal / d measured at each picked pixel
-        D = distortion_jacobian(lambda q: _ideal(q, K, dist), measured)
+    if np.any(
+        as_dist(dist)
+    ):  # d ideal / d measured at each picked pixel: the distortion's, inverted
+        D = np.linalg.inv(pixel_distortion_jacobian(uv, K, as_dist(dist)))
         g_pix = np.einsum("mki,kij->mkj", g_pix.reshape(len(m), -1, 2), D).reshape(len(m), -1)
     var_pose = np.einsum("mi,ij,mj->m", g_pose, cov, g_pose)
     var_pix = pixel_sigma**2 * np.sum(g_pix**2, axis=1)

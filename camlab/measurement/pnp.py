@@ -47,7 +47,7 @@ undistort_pixels`) and the pinhole problem is solved on the ideal pixels; the re
 rms are reported in the measured pixels (the pose reprojected through the distortion), the
 numbers OpenCV's ``solvePnP`` minimises. The noise lives in the measured pixels, so the
 covariance below uses the Jacobian of the *distorted* projection, :math:`J = D_i J_i^{\text{ideal}}`
-with :math:`D_i` the 2 x 2 Jacobian of the distortion at each point (:func:`distortion_jacobian`).
+with :math:`D_i` the 2 x 2 Jacobian of the distortion at each point (:func:`pixel_distortion_jacobian`).
 
 **Uncertainty.** Near the minimum the residuals are linear in the six parameters,
 :math:`r(p) \approx r + J \delta p`, and pixel noise of variance :math:`\sigma^2` per
@@ -96,6 +96,7 @@ from ..camera import (
 from ..distortion import (
     as_dist,
     distort_xy,
+    distortion_jacobian_unchecked,
     normalised_to_pixels,
     pixels_to_normalised,
     undistort_pixels,
@@ -108,7 +109,7 @@ __all__ = [
     "PnPResult",
     "plane_frame",
     "pose_covariance",
-    "distortion_jacobian",
+    "pixel_distortion_jacobian",
     "pose_jacobian",
     "project_pose",
     "solve_pnp",
@@ -264,34 +265,34 @@ def pose_jacobian(K: np.ndarray, R: np.ndarray, t: np.ndarray, X: np.ndarray) ->
     return (dproj @ dXc).reshape(-1, 6)
 
 
-def distortion_jacobian(mapping, uv: np.ndarray, step: float = 1e-4) -> np.ndarray:
-    r"""The (N, 2, 2) Jacobians of a pixel map at each pixel, by central differences.
+def pixel_distortion_jacobian(pixels: np.ndarray, K: np.ndarray, d: np.ndarray) -> np.ndarray:
+    r"""The (N, 2, 2) Jacobians of the distortion in pixels, at ideal pixels: d measured / d ideal.
 
-    ``mapping`` takes (N, 2) pixels to (N, 2) pixels, one point at a time (e.g.
-    ``lambda p: distort_pixels(p, K, dist)``); row ``k`` of the result is
-    :math:`\partial\, \text{mapping}(u_k) / \partial u_k`. A pixel noise :math:`\delta u` on one
-    side becomes :math:`D_k\, \delta u` on the other.
+    In normalised coordinates :math:`x = K^{-1} u` the distortion's Jacobian :math:`J(x)` is
+    :func:`camlab.distortion.distortion_jacobian`'s; pixels are an affine map of normalised
+    coordinates by the upper-left 2 x 2 block :math:`K_2` of K, so by the chain rule
+    :math:`D = K_2\, J(x)\, K_2^{-1}`. A pixel noise :math:`\delta u` on the ideal side becomes
+    :math:`D\, \delta u` on the measured side; the undistortion's Jacobian, at the measured
+    pixel, is :math:`D^{-1}` (the inverse function theorem).
 
     Parameters
     ----------
-    mapping : callable
-        (N, 2) ndarray -> (N, 2) ndarray, each point mapped on its own.
-    uv : (N, 2) ndarray
-        Where to take the derivatives, pixels.
-    step : float
-        Central-difference step, pixels.
+    pixels : (N, 2) ndarray
+        Ideal (undistorted) pixels where to take the derivatives.
+    K : (3, 3) ndarray
+        Checked intrinsics.
+    d : (5,) ndarray
+        ``(k1, k2, p1, p2, k3)`` from :func:`camlab.distortion.as_dist`.
 
     Returns
     -------
     (N, 2, 2) ndarray
-        ``D[k, i, j]`` = d mapping_i / d u_j at point k.
+        ``D[k, i, j]`` = d measured_i / d ideal_j at point k.
     """
-    D = np.zeros((len(uv), 2, 2))
-    for j in range(2):
-        e = np.zeros(2)
-        e[j] = step
-        D[:, :, j] = (mapping(uv + e) - mapping(uv - e)) / (2 * step)
-    return D
+    K2 = K[:2, :2]
+    return (
+        K2 @ distortion_jacobian_unchecked(pixels_to_normalised(pixels, K), d) @ np.linalg.inv(K2)
+    )
 
 
 def pose_covariance(
@@ -547,7 +548,7 @@ def solve_pnp(
     sigma2 = float(np.sum(res**2)) / max(2 * n - 6, 1)
     J = pose_jacobian(Km, R, t, X)
     if np.any(d):  # the noise is in the measured pixels: chain through the distortion
-        D = distortion_jacobian(lambda p: _distorted(p, Km, d), ideal_reproj)
+        D = pixel_distortion_jacobian(ideal_reproj, Km, d)
         J = (D @ J.reshape(n, 2, 6)).reshape(-1, 6)
     cov = sigma2 * np.linalg.pinv(J.T @ J)
     rms = float(np.sqrt(np.sum(res**2) / n))
