@@ -25,10 +25,9 @@ over the OpenCV model's, so a larger consensus is not charged for its extra pair
 the RMS of each model's own inliers, compared where the counts are within 5 %), and the
 dense matches of the same photo pair (the "all" setting, 2500 keypoints, ratio 0.8: several
 times more pairs, most of the case's own among them) each model explains within 3 px, worst
-seed over OpenCV's model: a check on the model that does not depend on the case's own
-matches (a larger consensus drawn to a compromise between the facades would explain fewer
-of them; where the common-inlier RMS and this disagree, this one says which model fits the
-building). The
+seed over OpenCV's model: a second view of the model, less tied to the case's own matches
+(a larger consensus drawn to a compromise between the facades would explain fewer of them).
+It is not a verdict either: where it and the common-inlier RMS disagree, look at both. The
 speed row times ``ransac_homography`` against ``cv2.findHomography(RANSAC)`` on 1000
 synthetic pairs with 30 % outliers (``benchmarks/speed_homography.py``'s data), calls
 alternating, ``--speed-runs`` times; the median ratio is reported. The last table runs

@@ -309,6 +309,13 @@ def test_the_picking_sigma_is_the_central_difference_of_pixels_to_plane():
     )
 
 
+def _pointwise_differences(mapping, pixels, h=1e-4):
+    """(N, 2, 2) central differences of a pixel map taken at each pixel on its own."""
+    steps = h * np.eye(2)
+    columns = [(mapping(pixels + e) - mapping(pixels - e)) / (2 * h) for e in steps]
+    return np.stack(columns, axis=-1)
+
+
 def test_pixel_distortion_jacobian_equals_differences_and_inverts_to_the_undistortion():
     """The analytic pixel Jacobian (K2 J(x) K2^-1) against central differences of distort_pixels,
     and its inverse against central differences of undistort_pixels at the measured pixels."""
@@ -319,18 +326,12 @@ def test_pixel_distortion_jacobian_equals_differences_and_inverts_to_the_undisto
     d = as_dist([-0.28, 0.08, 0.0012, -0.0008, -0.02])
     ideal = np.array([[20.0, 30], [341, 236], [600, 400], [100, 450]])
     D = pixel_distortion_jacobian(ideal, K, d)
-    h = 1e-4
-    for j in range(2):
-        e = np.zeros(2)
-        e[j] = h
-        numeric = (distort_pixels(ideal + e, K, d) - distort_pixels(ideal - e, K, d)) / (2 * h)
-        np.testing.assert_allclose(D[:, :, j], numeric, atol=1e-7)
+    np.testing.assert_allclose(
+        D, _pointwise_differences(lambda p: distort_pixels(p, K, d), ideal), atol=1e-7
+    )
     measured = distort_pixels(ideal, K, d)
-    D_inv = np.linalg.inv(D)
-    for j in range(2):
-        e = np.zeros(2)
-        e[j] = h
-        numeric = (undistort_pixels(measured + e, K, d) - undistort_pixels(measured - e, K, d)) / (
-            2 * h
-        )
-        np.testing.assert_allclose(D_inv[:, :, j], numeric, atol=1e-7)
+    np.testing.assert_allclose(
+        np.linalg.inv(D),
+        _pointwise_differences(lambda p: undistort_pixels(p, K, d), measured),
+        atol=1e-7,
+    )

@@ -191,10 +191,9 @@ def _propagate(
         d[k] = _STEP_PIXEL
         step = d.reshape(uv.shape)
         g_pix[:, k] = (value_at(uv + step) - value_at(uv - step)) / (2 * _STEP_PIXEL)
-    if np.any(
-        as_dist(dist)
-    ):  # d ideal / d measured at each picked pixel: the distortion's, inverted
-        D = np.linalg.inv(pixel_distortion_jacobian(uv, K, as_dist(dist)))
+    d = as_dist(dist)
+    if np.any(d):  # d ideal / d measured at each picked pixel: the distortion's, inverted
+        D = np.linalg.inv(pixel_distortion_jacobian(uv, K, d))
         g_pix = np.einsum("mki,kij->mkj", g_pix.reshape(len(m), -1, 2), D).reshape(len(m), -1)
     var_pose = np.einsum("mi,ij,mj->m", g_pose, cov, g_pose)
     var_pix = pixel_sigma**2 * np.sum(g_pix**2, axis=1)
