@@ -149,48 +149,68 @@ def _scroll_until_drawn(page, demo, tries: int = 3) -> bool:
     return False
 
 
+def _measure_every_demo(p, lab) -> tuple[dict, list]:
+    """Run every_demo.ipynb in a fresh 1400 x 1000 window with the file browser open, scroll each
+    demo into view until drawn, and measure them all: ``(undrawn, measured)``.
+
+    ``undrawn`` maps each demo whose canvas never drew to the kernel's status then. CI once saw
+    every canvas after one stay undrawn, each waiting its 3 x 45 s into the timeout; the second
+    already fails the check, so the scan stops there.
+    """
+    context = browser.launch(p, lab["profile"])  # a 1400 x 1000 window
+    try:
+        page = context.new_page()
+        page.set_default_timeout(180_000)
+        browser.run_notebook(page, lab, "every_demo.ipynb")
+        page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
+        if (
+            page.evaluate(
+                "() => document.querySelector('#jp-left-stack').getBoundingClientRect().width"
+            )
+            < 100
+        ):
+            page.evaluate("() => window.jupyterapp.commands.execute('filebrowser:activate')")
+        page.wait_for_function(
+            "() => document.querySelector('#jp-left-stack').getBoundingClientRect().width > 200"
+        )
+        undrawn = {}  # drawn only once scrolled into view
+        for demo in page.locator("[class*=camlab-demo-]").all():
+            if not _scroll_until_drawn(page, demo):
+                classes = demo.get_attribute("class").split()
+                name = next(c for c in classes if c.startswith("camlab-demo-"))
+                undrawn[name] = page.evaluate(KERNEL_STATUS)
+            if len(undrawn) > 1:
+                break
+        page.wait_for_timeout(1000)
+        return undrawn, page.evaluate(MEASURE_DEMOS)
+    finally:
+        context.close()
+
+
 @pytest.mark.long_browser
+@pytest.mark.timeout(1500)  # two runs of the notebook at most (below)
 def test_every_demo_fits_at_1400_px_with_the_file_browser_open(lab):
     """Nothing clipped in JupyterLab's output area at a 1400 px window with the file browser open
     (968 px): the controls and the figure sit side by side where both fit, else the figure wraps
-    under the controls (demos 1100 px wide were once cut off on the right)."""
+    under the controls (demos 1100 px wide were once cut off on the right).
+
+    Two canvases that never draw, with the kernel idle (CI, 7c5ef26b: feature-matches and
+    flip-pose), are a load flake of ipympl's first frame in the browser, not a layout fault:
+    the notebook then runs once more, in a fresh window, and that run is measured. Both runs'
+    undrawn canvases are in the message if the second fails too.
+    """
     from playwright.sync_api import sync_playwright
 
     from camlab.widgets import all_demos
 
     with sync_playwright() as p:
-        context = browser.launch(p, lab["profile"])  # a 1400 x 1000 window
-        try:
-            page = context.new_page()
-            page.set_default_timeout(180_000)
-            browser.run_notebook(page, lab, "every_demo.ipynb")
-            page.wait_for_function(browser.ALL_CELLS_RUN, polling=500)
-            if (
-                page.evaluate(
-                    "() => document.querySelector('#jp-left-stack').getBoundingClientRect().width"
-                )
-                < 100
-            ):
-                page.evaluate("() => window.jupyterapp.commands.execute('filebrowser:activate')")
-            page.wait_for_function(
-                "() => document.querySelector('#jp-left-stack').getBoundingClientRect().width > 200"
-            )
-            undrawn = {}  # demo -> the kernel's status then; drawn only once scrolled into view
-            for demo in page.locator("[class*=camlab-demo-]").all():
-                if not _scroll_until_drawn(page, demo):
-                    classes = demo.get_attribute("class").split()
-                    name = next(c for c in classes if c.startswith("camlab-demo-"))
-                    undrawn[name] = page.evaluate(KERNEL_STATUS)
-                if len(undrawn) > 1:
-                    # CI once saw every canvas after one stay undrawn, so each waited its 3 x 45 s
-                    # into the 900 s timeout: the second already fails the test, so stop here.
-                    break
-            page.wait_for_timeout(1000)
-            measured = page.evaluate(MEASURE_DEMOS)
-        finally:
-            context.close()
+        undrawn, measured = _measure_every_demo(p, lab)
+        first = undrawn
+        if len(undrawn) > 1:
+            undrawn, measured = _measure_every_demo(p, lab)
     assert len(undrawn) <= 1, (
-        f"canvases never drawn (0 x 0) through every retry (kernel status): {undrawn}"
+        f"canvases never drawn (0 x 0) through every retry (kernel status): first run {first}, "
+        f"second run {undrawn}"
     )
     assert len(measured) == len(all_demos())
     assert all(940 <= m["area"] <= 1000 for m in measured), (
