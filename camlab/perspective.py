@@ -79,7 +79,8 @@ def _quad(corners: ArrayLike) -> np.ndarray:
 def _signed_area(q: np.ndarray) -> float:
     """Shoelace area in (u, v) pixels; positive for clockwise-on-screen order (v points down)."""
     u, v = q[:, 0], q[:, 1]
-    return 0.5 * float(np.sum(u * np.roll(v, -1) - np.roll(u, -1) * v))
+    u1, v1 = np.r_[u[1:], u[:1]], np.r_[v[1:], v[:1]]  # the next corner's
+    return 0.5 * float(np.sum(u * v1 - u1 * v))
 
 
 def _segments_cross(p1, p2, p3, p4) -> bool:
@@ -145,15 +146,18 @@ def check_quadrilateral(corners: ArrayLike) -> np.ndarray:
     """
     q = _quad(corners)
     scale = max(np.ptp(q, axis=0).max(), 1e-300)
-    for i in range(4):
-        a, b, c = q[i], q[(i + 1) % 4], q[(i + 2) % 4]
-        cross = (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0])
+    edges = q[[1, 2, 3, 0]] - q  # edge i runs from corner i to corner i + 1
+    nxt = edges[[1, 2, 3, 0]]
+    turns = edges[:, 0] * nxt[:, 1] - edges[:, 1] * nxt[:, 0]  # the turn at corner i + 1
+    for i, cross in enumerate(turns.tolist()):
         if abs(cross) < 1e-9 * scale**2:
+            a, b, c = q[i], q[(i + 1) % 4], q[(i + 2) % 4]
             raise DegenerateError(
                 f"corners: corners {i}, {(i + 1) % 4}, {(i + 2) % 4} are collinear or coincide "
                 f"({a}, {b}, {c}); the four corners must form a quadrilateral"
             )
-    if _segments_cross(q[0], q[1], q[2], q[3]) or _segments_cross(q[1], q[2], q[3], q[0]):
+    p = q.tolist()  # Python floats: the orientation tests below are scalar arithmetic
+    if _segments_cross(p[0], p[1], p[2], p[3]) or _segments_cross(p[1], p[2], p[3], p[0]):
         raise DegenerateError(
             "corners: the quadrilateral is self-intersecting (a bow tie), so the corners are out of order; "
             "give them as top-left, top-right, bottom-right, bottom-left, or pass reorder=True "
@@ -164,13 +168,7 @@ def check_quadrilateral(corners: ArrayLike) -> np.ndarray:
             "corners: the corners go counter-clockwise on screen, so the rectified view would be mirrored; "
             "give them as top-left, top-right, bottom-right, bottom-left, or pass reorder=True"
         )
-    turns = [
-        np.cross(
-            np.append(q[(i + 1) % 4] - q[i], 0), np.append(q[(i + 2) % 4] - q[(i + 1) % 4], 0)
-        )[2]
-        for i in range(4)
-    ]
-    if min(turns) < 0:
+    if turns.min() < 0:
         raise DegenerateError(
             "corners: the quadrilateral is not convex, and no photograph of a rectangle is; check the corners"
         )
@@ -290,8 +288,9 @@ def estimate_aspect_ratio(
     scale = float(np.abs(q - pp).max()) or 1.0
     m = np.column_stack([(q - pp) / scale, np.ones(4)])
     m1, m2, m4, m3 = m  # input order TL, TR, BR, BL; the paper's m1..m4 are TL, TR, BL, BR
-    k2 = np.dot(np.cross(m1, m4), m3) / np.dot(np.cross(m2, m4), m3)
-    k3 = np.dot(np.cross(m1, m4), m2) / np.dot(np.cross(m3, m4), m2)
+    c14, c24, c34 = np.cross([m1, m2, m3], m4)  # m_i x m4, in one call
+    k2 = np.dot(c14, m3) / np.dot(c24, m3)
+    k3 = np.dot(c14, m2) / np.dot(c34, m2)
     n2 = k2 * m2 - m1
     n3 = k3 * m3 - m1
     par2 = abs(n2[2]) < 1e-9 * np.linalg.norm(n2)
