@@ -49,6 +49,10 @@ __all__ = ["PlaneMeasurement", "area_on_plane", "measure_on_plane", "pixels_to_p
 
 _STEP_POSE = 1e-7
 _STEP_PIXEL = 1e-4
+# The pose's central differences: +h e_k for the six parameters, then -h e_k; each step's
+# rotation (the identity for a translation's), made once, left-multiplies the pose's R.
+_POSE_STEPS = _STEP_POSE * np.vstack([np.eye(6), -np.eye(6)])
+_POSE_STEP_ROTATIONS = np.array([rotation_from_axis_angle_unchecked(d[:3]) for d in _POSE_STEPS])
 
 
 class PlaneMeasurement(NamedTuple):
@@ -102,9 +106,10 @@ def _plane_from_pixels(K: np.ndarray, R: np.ndarray, t: np.ndarray) -> np.ndarra
 
 
 def _through(H_inv: np.ndarray, uv: np.ndarray) -> np.ndarray:
-    """Ideal pixels (N, 2) through the plane's inverse homography: plane points (N, 2)."""
-    p = np.hstack([uv, np.ones((len(uv), 1))]) @ H_inv.T
-    return p[:, :2] / p[:, 2:]
+    """Ideal pixels (..., N, 2) through the plane's inverse homography (3, 3), or a stack of them
+    (..., 3, 3): plane points (..., N, 2)."""
+    p = np.concatenate([uv, np.ones(uv.shape[:-1] + (1,))], axis=-1) @ np.swapaxes(H_inv, -1, -2)
+    return p[..., :2] / p[..., 2:]
 
 
 def pixels_to_plane(
@@ -169,28 +174,20 @@ def _propagate(
     R, t, cov = _pose_parts(pose)
     uv = _ideal(measured, K, dist)
 
-    def value(Ri, ti, u):
-        return np.atleast_1d(value_of(_to_plane(K, Ri, ti, u)))
+    def values(points: np.ndarray) -> np.ndarray:  # value_of at each of a stack of plane points
+        return np.array([np.atleast_1d(value_of(p)) for p in points])
 
-    m = value(R, t, uv)
-    g_pose = np.zeros((len(m), 6))
-    for k in range(6):
-        d = np.zeros(6)
-        d[k] = _STEP_POSE
-        plus = value(rotation_from_axis_angle_unchecked(d[:3]) @ R, t + d[3:], uv)
-        minus = value(rotation_from_axis_angle_unchecked(-d[:3]) @ R, t - d[3:], uv)
-        g_pose[:, k] = (plus - minus) / (2 * _STEP_POSE)
-    g_pix = np.zeros((len(m), uv.size))
-    H_inv = _plane_from_pixels(K, R, t)  # the pose stays: one inverse for every pixel's step
-
-    def value_at(u):
-        return np.atleast_1d(value_of(_through(H_inv, u)))
-
-    for k in range(uv.size):
-        d = np.zeros(uv.size)
-        d[k] = _STEP_PIXEL
-        step = d.reshape(uv.shape)
-        g_pix[:, k] = (value_at(uv + step) - value_at(uv - step)) / (2 * _STEP_PIXEL)
+    H_inv = _plane_from_pixels(K, R, t)
+    on_plane = _through(H_inv, uv)
+    m = values(on_plane[None])[0]
+    # the twelve stepped poses' homographies K [r1 r2 t], inverted in one call
+    Rs, ts = _POSE_STEP_ROTATIONS @ R, t + _POSE_STEPS[:, 3:]
+    stepped = values(_through(np.linalg.inv(K @ np.stack([Rs[:, :, 0], Rs[:, :, 1], ts], axis=2)), uv))
+    g_pose = ((stepped[:6] - stepped[6:]) / (2 * _STEP_POSE)).T
+    # each pixel coordinate stepped by +h, then by -h; the pose stays: one inverse for all
+    steps = _STEP_PIXEL * np.eye(uv.size).reshape(uv.size, *uv.shape)
+    stepped = values(_through(H_inv, np.concatenate([uv + steps, uv - steps])))
+    g_pix = ((stepped[: uv.size] - stepped[uv.size :]) / (2 * _STEP_PIXEL)).T
     d = as_dist(dist)
     if np.any(d):  # d ideal / d measured at each picked pixel: the distortion's, inverted
         D = np.linalg.inv(pixel_distortion_jacobian(uv, K, d))
@@ -198,7 +195,7 @@ def _propagate(
     var_pose = np.einsum("mi,ij,mj->m", g_pose, cov, g_pose)
     var_pix = pixel_sigma**2 * np.sum(g_pix**2, axis=1)
     s_pose, s_pix = np.sqrt(np.maximum(var_pose, 0)), np.sqrt(var_pix)
-    return PlaneMeasurement(m, np.hypot(s_pose, s_pix), s_pose, s_pix, _to_plane(K, R, t, uv))
+    return PlaneMeasurement(m, np.hypot(s_pose, s_pix), s_pose, s_pix, on_plane)
 
 
 def _pixel_sigma(pixel_sigma, pose) -> float:
