@@ -37,7 +37,10 @@ FIGURE_CALL = re.compile(r"\bplt\.(subplots|figure)\(")
 # 11, 12), mostly photographs inside figures; 43.0 MB after the twelfth session's real-photo
 # figures (lesson 09's real building panorama and its zooms, lesson 12's stereo rig and Middlebury)
 MAX_BYTES = 3.5e6 * len(LESSONS)
-MAX_BUILD_S = 180
+# CPU seconds of building the site: 180 was set for twelve lessons; with lesson 12 and the real-photo
+# figures a build measured 316 and 282 CPU s (2026-11-28, -29), most of it executing the lessons
+# (issue 32's lessons row). 420 leaves a third over that: a lesson that doubles its time still fails.
+MAX_BUILD_S = 420
 
 
 def _children_cpu() -> float:
@@ -109,7 +112,7 @@ def test_site_has_every_page_and_stays_small(site):
     )
     if site["seconds"] is not None:
         # CPU seconds of the build and its kernels: under MAX_BUILD_S the build ends within
-        # 3 minutes even on one free core, however loaded the shared machine is now.
+        # 7 minutes even on one free core, however loaded the shared machine is now.
         assert site["seconds"] < MAX_BUILD_S, (
             f"the site took {site['seconds']:.0f} CPU s to build (budget {MAX_BUILD_S} s)"
         )
