@@ -176,17 +176,22 @@ def distortion_jacobian_unchecked(xy: np.ndarray, d: np.ndarray) -> np.ndarray:
     (..., 2, 2) ndarray
         d(distorted) / d(ideal) at each point: row i differentiates distorted coordinate i.
     """
+    J = np.empty(xy.shape[:-1] + (2, 2))
+    J[..., 0, 0], J[..., 0, 1], J[..., 1, 1] = _jacobian_entries(xy[..., 0], xy[..., 1], d)
+    J[..., 1, 0] = J[..., 0, 1]
+    return J
+
+
+def _jacobian_entries(x: np.ndarray, y: np.ndarray, d: np.ndarray) -> tuple:
+    """d(distorted) / d(ideal) as its entries ``(xx, xy, yy)``: the matrix is symmetric (yx = xy)."""
     k1, k2, p1, p2, k3 = d
-    x, y = xy[..., 0], xy[..., 1]
     r2 = x * x + y * y
     radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3))
     dradial = k1 + r2 * (2.0 * k2 + 3.0 * k3 * r2)  # d radial / d(r^2)
-    J = np.empty(xy.shape[:-1] + (2, 2))
-    J[..., 0, 0] = radial + 2 * x * x * dradial + 2 * p1 * y + 6 * p2 * x
-    J[..., 0, 1] = 2 * x * y * dradial + 2 * p1 * x + 2 * p2 * y
-    J[..., 1, 0] = 2 * x * y * dradial + 2 * p1 * x + 2 * p2 * y
-    J[..., 1, 1] = radial + 2 * y * y * dradial + 6 * p1 * y + 2 * p2 * x
-    return J
+    xx = radial + 2 * x * x * dradial + 2 * p1 * y + 6 * p2 * x
+    xy = 2 * x * y * dradial + 2 * p1 * x + 2 * p2 * y
+    yy = radial + 2 * y * y * dradial + 6 * p1 * y + 2 * p2 * x
+    return xx, xy, yy
 
 
 def distort_points(points: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
@@ -340,32 +345,37 @@ def newton_undistort(
         ``points`` (N, 2), the ideal normalised coordinates, and ``residual`` (N,), max-abs
         residual per point (inf where Newton failed or landed beyond the fold).
     """
-    x = target.copy()
     if not d.any():
-        return NewtonUndistort(x, np.zeros(len(x)))
+        return NewtonUndistort(target.copy(), np.zeros(len(target)))
+    # x and y as separate contiguous arrays: the step is a 2 x 2 solve per point, written out
+    tx, ty = target[:, 0].copy(), target[:, 1].copy()
+    x, y = tx.copy(), ty.copy()
     res = np.full(len(x), np.inf)
     for _ in range(max_iter):
-        r = _distort(x, d) - target
-        res = np.abs(r).max(axis=1)
+        with np.errstate(over="ignore", invalid="ignore"):
+            xd, yd = distort_xy(x, y, d)
+            rx, ry = xd - tx, yd - ty
+            res = np.maximum(np.abs(rx), np.abs(ry))
         if not (res > tol).any():
             break
-        J = distortion_jacobian_unchecked(x, d)
-        det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            dx = (J[:, 1, 1] * r[:, 0] - J[:, 0, 1] * r[:, 1]) / det
-            dy = (-J[:, 1, 0] * r[:, 0] + J[:, 0, 0] * r[:, 1]) / det
-            x = x - np.stack([dx, dy], axis=1)
+            jxx, jxy, jyy = _jacobian_entries(x, y, d)
+            det = jxx * jyy - jxy * jxy
+            x = x - (jyy * rx - jxy * ry) / det
+            y = y - (-jxy * rx + jxx * ry) / det
         x[~np.isfinite(x)] = 1e6
+        y[~np.isfinite(y)] = 1e6
     else:
         with np.errstate(over="ignore", invalid="ignore"):
-            res = np.abs(_distort(x, d) - target).max(axis=1)
+            xd, yd = distort_xy(x, y, d)
+            res = np.maximum(np.abs(xd - tx), np.abs(yd - ty))
     res = np.where(np.isfinite(res), res, np.inf)
     # a root beyond the fold (slope of r L(r) <= 0) is not the physical inverse either
     r_fold = _valid_radius(tuple(d.tolist()))  # cached: PnP and Monte Carlo loops reuse one dist
     with np.errstate(over="ignore", invalid="ignore"):
-        beyond = np.hypot(x[:, 0], x[:, 1]) > r_fold
+        beyond = np.hypot(x, y) > r_fold
     res[beyond] = np.inf
-    return NewtonUndistort(x, res)
+    return NewtonUndistort(np.column_stack([x, y]), res)
 
 
 def radial_scale(r: ArrayLike, dist: ArrayLike | None) -> np.ndarray:
