@@ -106,8 +106,10 @@ def _plane_from_pixels(K: np.ndarray, R: np.ndarray, t: np.ndarray) -> np.ndarra
 
 
 def _through(H_inv: np.ndarray, uv: np.ndarray) -> np.ndarray:
-    """Ideal pixels (..., N, 2) through the plane's inverse homography (3, 3), or a stack of them
-    (..., 3, 3): plane points (..., N, 2)."""
+    """Ideal pixels (..., N, 2) through the plane's inverse homography: plane points (..., N, 2).
+
+    ``H_inv`` is one (3, 3) matrix or a stack of them (..., 3, 3), one per set of pixels.
+    """
     p = np.concatenate([uv, np.ones(uv.shape[:-1] + (1,))], axis=-1) @ np.swapaxes(H_inv, -1, -2)
     return p[..., :2] / p[..., 2:]
 
