@@ -184,7 +184,9 @@ def _propagate(
     m = values(on_plane[None])[0]
     # the twelve stepped poses' homographies K [r1 r2 t], inverted in one call
     Rs, ts = _POSE_STEP_ROTATIONS @ R, t + _POSE_STEPS[:, 3:]
-    stepped = values(_through(np.linalg.inv(K @ np.stack([Rs[:, :, 0], Rs[:, :, 1], ts], axis=2)), uv))
+    stepped = values(
+        _through(np.linalg.inv(K @ np.stack([Rs[:, :, 0], Rs[:, :, 1], ts], axis=2)), uv)
+    )
     g_pose = ((stepped[:6] - stepped[6:]) / (2 * _STEP_POSE)).T
     # each pixel coordinate stepped by +h, then by -h; the pose stays: one inverse for all
     steps = _STEP_PIXEL * np.eye(uv.size).reshape(uv.size, *uv.shape)
