@@ -78,8 +78,7 @@ def _quad(corners: ArrayLike) -> np.ndarray:
 
 def _signed_area(q: np.ndarray) -> float:
     """Shoelace area in (u, v) pixels; positive for clockwise-on-screen order (v points down)."""
-    u, v = q[:, 0], q[:, 1]
-    u1, v1 = np.r_[u[1:], u[:1]], np.r_[v[1:], v[:1]]  # the next corner's
+    (u, v), (u1, v1) = q.T, np.roll(q, -1, axis=0).T  # each corner and the next
     return 0.5 * float(np.sum(u * v1 - u1 * v))
 
 

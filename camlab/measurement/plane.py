@@ -181,7 +181,7 @@ def _propagate(
 
     H_inv = _plane_from_pixels(K, R, t)
     on_plane = _through(H_inv, uv)
-    m = values(on_plane[None])[0]
+    m = np.atleast_1d(value_of(on_plane))
     # the twelve stepped poses' homographies K [r1 r2 t], inverted in one call
     Rs, ts = _POSE_STEP_ROTATIONS @ R, t + _POSE_STEPS[:, 3:]
     stepped = values(
